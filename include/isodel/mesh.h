@@ -1,0 +1,78 @@
+#pragma once
+/// \file mesh.h
+/// DELSURFMESH: a surface mesh M of a level set Sigma = {F = v} of the trilinear interpolant F of a
+/// sampled volume, with the paper's guarantees (Goswami, Gillette, Bajaj, Sections 4.1-4.3 and 5):
+///  I.   M is homeomorphic to Sigma (closed ball property of Vor(E u G u N), Theorem 1);
+///  II.  every restricted facet's surface point lies within eps of its circumcentre;
+///  III. M is a subcomplex of the Delaunay triangulation of its vertices;
+///  IV.  the same on adaptive grids (see octree/).
+///
+/// The function being meshed (one convention in the mesher, verify and the tests):
+///  - F is the trilinear interpolant of the samples at OpenVDB index points, mapped to world by
+///    the grid's transform; inactive voxels read through the grid (background / tile values).
+///  - A sample exactly equal to v counts as above v: Sigma is the limit of {F = v - d}, d -> 0+.
+///    isodel meshes {F = v*} with v* = effective_isovalue(...) (see octree/sample_field.h).
+///  - Beyond the active bounding box grown by one voxel F is on the outside side, so Sigma is a
+///    set of closed surfaces.
+#include <isodel/interrupt.h>
+#include <isodel/surface_mesh.h>
+#include <isodel/volume.h>
+
+#include <openvdb/openvdb.h>
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace isodel {
+
+struct MeshOptions {
+    double isovalue = 0.0;               ///< v, in value units
+    std::optional<Inside> inside;        ///< default: Below for level-set grids, Above otherwise
+    double eps = 0.0;                    ///< Hausdorff bound in world units; 0 = use eps_voxels
+    double eps_voxels = 0.5;             ///< ... in units of the smallest voxel edge
+    bool snap = false;                   ///< Section 5: snap E points within eps of a grid point
+    int threads = 0;                     ///< 0 = all hardware threads; result does not depend on it
+    std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 20 x |E| + 10^5
+    int max_rounds = 2000;               ///< cap on insertion rounds
+};
+
+/// Topology of one connected component of a closed surface mesh.
+struct ComponentTopology {
+    int euler = 0;
+    int genus = 0;
+    std::size_t triangles = 0;
+};
+
+/// What a run did and measured; serialised by the CLI's --stats.
+struct MeshStats {
+    std::size_t e_points = 0, g_points = 0, n_topology = 0, n_geometry = 0, snapped = 0;
+    std::size_t vertices = 0, triangles = 0;
+    int rounds = 0;
+    double effective_isovalue = 0.0;
+    double eps_world = 0.0;
+    /// Seconds per phase: read, points, delaunay, closed_ball, refine, write, total.
+    std::map<std::string, double> seconds;
+    std::size_t peak_memory_bytes = 0;
+    /// Voxel bound (Theorem 2): the most cells a Voronoi cell of an E / N point met, and the
+    /// bound it is held to.
+    int max_cells_e = 0, max_cells_n = 0, bound_e = 4, bound_n = 27;
+    std::size_t bound_repairs = 0;       ///< grid points added where a Voronoi cell left its bound
+    std::vector<ComponentTopology> components;
+};
+
+struct MeshResult {
+    SurfaceMesh surface;
+    MeshStats stats;
+};
+
+/// Meshes {F = options.isovalue} of \p grid.
+/// \throw InvalidInput isovalue outside the value range, empty grid, bad options
+/// \throw GuaranteeViolated a stated bound stopped refinement (message names it)
+/// \throw Cancelled the interrupter asked to stop
+MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options,
+                           Interrupter* interrupter = nullptr);
+
+} // namespace isodel

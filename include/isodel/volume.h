@@ -1,0 +1,58 @@
+#pragma once
+/// \file volume.h
+/// Reading sampled scalar volumes into an openvdb::FloatGrid.
+///
+/// Conventions (the same everywhere in isodel): sample (i,j,k) sits at OpenVDB index (i,j,k);
+/// the grid's transform maps index to world (voxel size, origin, and for crystallographic maps
+/// a sheared affine map). Dense formats (MRC/CCP4, INR, raw) produce grids whose every sample
+/// is an active voxel, so the active bounding box is the file's lattice.
+#include <openvdb/openvdb.h>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace isodel {
+
+/// Which side of the isovalue is the solid.
+enum class Inside { Above, Below };
+
+const char* to_string(Inside inside);
+
+/// Layout of a headerless raw volume (x fastest, then y, then z; little-endian).
+struct RawLayout {
+    std::array<int, 3> dims{0, 0, 0};
+    std::string type = "float32"; ///< float32 | uint8 | uint16 | int16
+    double spacing = 1.0;         ///< voxel size in world units, > 0
+};
+
+struct ReadOptions {
+    /// `.vdb`: name of the grid to read; empty = the first float/double scalar grid.
+    std::string grid_name;
+    /// Required for raw volumes (files that are not .vdb/.mrc/.map/.ccp4/.inr/.inr.gz).
+    std::optional<RawLayout> raw;
+    /// Refuse headers announcing more samples than this, before allocating anything.
+    std::uint64_t max_voxels = std::uint64_t(1) << 31;
+};
+
+/// A volume as read from a file.
+struct Volume {
+    openvdb::FloatGrid::Ptr grid; ///< samples and index->world transform; never null
+    std::string path;             ///< the file it came from
+    std::string format;           ///< "vdb", "mrc", "inr", "raw"
+    Inside default_inside = Inside::Above; ///< level set grid class -> Below; everything else Above
+    openvdb::CoordBBox lattice;   ///< index box of the sample lattice
+    float value_min = 0, value_max = 0;    ///< over the lattice's samples
+};
+
+/// Reads \p path by extension (.vdb, .mrc/.map/.ccp4, .inr/.inr.gz, else raw with \p opt.raw).
+/// \throw IoError the file cannot be opened or is truncated
+/// \throw InvalidInput unknown extension, wrong magic, bad header, non-finite samples, ...
+/// Every message starts with the path.
+Volume read_volume(const std::string& path, const ReadOptions& opt = {});
+
+/// Writes \p grid (and optional extra grids) to a .vdb file atomically (temporary name + rename).
+void write_vdb(const std::string& path, const openvdb::GridPtrVec& grids);
+
+} // namespace isodel

@@ -1,0 +1,73 @@
+#include "octree/sample_field.h"
+
+#include <isodel/errors.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace isodel::octree {
+
+SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside)
+    : grid_(std::move(grid)), isovalue_(isovalue), effective_(isovalue), inside_(inside),
+      sign_(inside == Inside::Above ? 1.0 : -1.0)
+{
+    if (!grid_) throw InvalidInput("null grid");
+    const CoordBBox active = grid_->evalActiveVoxelBoundingBox();
+    if (active.empty() || grid_->activeVoxelCount() == 0)
+        throw InvalidInput("grid '" + grid_->getName() + "' is empty (no active voxels)");
+    domain_ = active;
+    domain_.expand(1);
+
+    // One pass over the domain: value range, whether a sample equals v, and the gap below v.
+    // Samples outside the active voxels read as background/tiles, which count too.
+    double vmin = std::numeric_limits<double>::infinity(), vmax = -vmin;
+    bool tie = false;
+    double gap = std::numeric_limits<double>::infinity();
+    auto consider = [&](double f) {
+        vmin = std::min(vmin, f);
+        vmax = std::max(vmax, f);
+        if (f == isovalue) tie = true;
+        else if (f < isovalue) gap = std::min(gap, isovalue - f);
+    };
+    for (auto it = grid_->cbeginValueOn(); it; ++it) {
+        const double f = *it;
+        if (it.isVoxelValue()) consider(f);
+        else consider(f); // tiles: one value for the whole tile
+    }
+    // Inactive samples of the domain (background, inactive tiles) - at least the background,
+    // which every sample in the grown ring reads unless it is inside a tile.
+    consider(grid_->background());
+    for (auto it = grid_->cbeginValueOff(); it; ++it) {
+        if (!it.isVoxelValue()) consider(*it);
+        else { consider(*it); }
+    }
+    vmin_ = vmin;
+    vmax_ = vmax;
+    if (!(isovalue > vmin && isovalue < vmax) && !(tie && vmin < vmax)) {
+        std::ostringstream os;
+        os << "isovalue " << isovalue << " is outside the value range [" << vmin << ", " << vmax
+           << "] of grid '" << grid_->getName() << "': the level set is empty";
+        throw InvalidInput(os.str());
+    }
+    if (tie) {
+        const double span = vmax - vmin;
+        double d = std::min(0.5 * gap, 1e-3 * span);
+        if (!(d > 0)) d = 1e-3 * span;
+        effective_ = isovalue - d;
+    }
+    // Outside samples sit clearly on the outside side.
+    outside_magnitude_ = std::max(1.0, vmax - vmin);
+
+    const auto& xf = grid_->transform();
+    min_edge_ = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        Vec3d e(0.0);
+        e[a] = 1.0;
+        const Vec3d w = xf.indexToWorld(e) - xf.indexToWorld(Vec3d(0.0));
+        min_edge_ = std::min(min_edge_, w.length());
+    }
+}
+
+} // namespace isodel::octree

@@ -1,0 +1,88 @@
+#pragma once
+/// \file sample_field.h
+/// The function being meshed, in one place: the samples of an openvdb::FloatGrid, the level
+/// v* actually meshed, and the side that is inside. Everything downstream (edge crossings,
+/// protective layer, segment roots, verify) reads samples through phi(), never the grid.
+///
+///   phi(ijk) = s * (value(ijk) - v*),  s = +1 if inside is above, -1 if below,
+///
+/// so phi > 0 inside and phi < 0 outside, and phi is never exactly 0 at a sample.
+///
+/// Rules (see include/isodel/mesh.h):
+///  - Ties: a sample equal to v counts as above v; Sigma is the limit of {F = v - d}, d -> 0+.
+///    When some sample equals v we mesh v* = v - d with
+///        d = min( gap/2, 1e-3 * (value range) ),   gap = min{ v - f : samples f < v },
+///    the largest d that keeps every other sample on its side; otherwise v* = v. So E points
+///    never coincide with grid points.
+///  - Domain: samples inside the active bounding box grown by one voxel are read through the grid
+///    (inactive voxels give the background or tile value); beyond it every sample is "outside"
+///    (phi = -outside_magnitude), so Sigma is a union of closed surfaces inside domain().expand(1).
+#include <isodel/volume.h>
+
+#include <openvdb/openvdb.h>
+
+namespace isodel::octree {
+
+using openvdb::Coord;
+using openvdb::CoordBBox;
+using openvdb::Vec3d;
+
+class SampleField {
+public:
+    /// \throw InvalidInput empty grid, or \p isovalue outside the value range of the domain.
+    SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside);
+
+    const openvdb::FloatGrid& grid() const { return *grid_; }
+    const openvdb::math::Transform& transform() const { return grid_->transform(); }
+    /// Samples read through the grid: active bbox grown by one voxel.
+    const CoordBBox& domain() const { return domain_; }
+    double isovalue() const { return isovalue_; }
+    double effective_isovalue() const { return effective_; }
+    Inside inside() const { return inside_; }
+    double value_min() const { return vmin_; }
+    double value_max() const { return vmax_; }
+
+    /// phi from a raw sample value (for callers iterating the grid themselves).
+    double phi_of_value(double value) const { return sign_ * (value - effective_); }
+    /// phi at a sample outside domain().
+    double outside_phi() const { return -outside_magnitude_; }
+
+    Vec3d index_to_world(const Vec3d& p) const { return grid_->transform().indexToWorld(p); }
+    Vec3d world_to_index(const Vec3d& p) const { return grid_->transform().worldToIndex(p); }
+    /// Smallest voxel edge in world units (length of the shortest index-axis step).
+    double min_voxel_edge() const { return min_edge_; }
+
+    /// A cheap per-thread reader of phi (owns an OpenVDB ValueAccessor, which is not thread-safe).
+    class Reader {
+    public:
+        explicit Reader(const SampleField& f) : f_(&f), acc_(f.grid_->getConstAccessor()) {}
+        double phi(const Coord& ijk) const
+        {
+            if (!f_->domain_.isInside(ijk)) return f_->outside_phi();
+            return f_->phi_of_value(acc_.getValue(ijk));
+        }
+        /// Corner phi values of the unit cell with lowest corner \p c, in the order
+        /// index = i + 2j + 4k (corner (i,j,k) at c + (i,j,k)).
+        void cell_corners(const Coord& c, double out[8]) const
+        {
+            for (int n = 0; n < 8; ++n) out[n] = phi(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1));
+        }
+        const SampleField& field() const { return *f_; }
+
+    private:
+        const SampleField* f_;
+        mutable openvdb::FloatGrid::ConstAccessor acc_;
+    };
+
+private:
+    openvdb::FloatGrid::ConstPtr grid_;
+    CoordBBox domain_;
+    double isovalue_, effective_;
+    Inside inside_;
+    double sign_;
+    double vmin_, vmax_;
+    double outside_magnitude_;
+    double min_edge_;
+};
+
+} // namespace isodel::octree
