@@ -52,6 +52,10 @@ struct Volume {
 /// Every message starts with the path.
 Volume read_volume(const std::string& path, const ReadOptions& opt = {});
 
+/// Refuses an isovalue outside [vol.value_min, vol.value_max] (or non-finite):
+/// \throw InvalidInput "<path>: isovalue V is outside the value range [min, max] of the samples".
+void check_isovalue(const Volume& vol, double isovalue);
+
 /// Writes \p grid (and optional extra grids) to a .vdb file atomically (temporary name + rename).
 void write_vdb(const std::string& path, const openvdb::GridPtrVec& grids);
 

@@ -1,0 +1,247 @@
+// Surface mesh readers (.ply ascii/binary, .obj, .off, .stl ascii/binary), used by verify and the
+// tests. Polygons are fan-triangulated; STL's triangle soup is welded by exact vertex position.
+#include "atomic_file.h"
+
+#include <isodel/errors.h>
+#include <isodel/surface_mesh.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace isodel {
+namespace {
+
+[[noreturn]] void bad(const std::string& path, const std::string& what) { throw InvalidInput(path + ": " + what); }
+
+void add_polygon(const std::string& path, SurfaceMesh& m, const std::vector<long long>& poly)
+{
+    if (poly.size() < 3) bad(path, "face with fewer than 3 vertices");
+    for (long long i : poly)
+        if (i < 0 || i >= (long long)m.vertices.size()) bad(path, "face refers to missing vertex " + std::to_string(i));
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+        m.triangles.push_back({std::int32_t(poly[0]), std::int32_t(poly[k]), std::int32_t(poly[k + 1])});
+}
+
+// ---- PLY ----
+struct PlyProp {
+    std::string name, type, count_type; // count_type non-empty for lists
+};
+struct PlyElement {
+    std::string name;
+    std::size_t count = 0;
+    std::vector<PlyProp> props;
+};
+
+int ply_size(const std::string& path, const std::string& t)
+{
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    bad(path, "unknown PLY property type '" + t + "'");
+}
+
+double ply_binary(std::istream& in, const std::string& t, bool big, const std::string& path)
+{
+    unsigned char b[8];
+    const int n = ply_size(path, t);
+    if (!in.read(reinterpret_cast<char*>(b), n)) bad(path, "truncated PLY data");
+    if (big) std::reverse(b, b + n);
+    auto as = [&](auto v) { std::memcpy(&v, b, sizeof(v)); return double(v); };
+    if (t == "char" || t == "int8") return as(std::int8_t());
+    if (t == "uchar" || t == "uint8") return as(std::uint8_t());
+    if (t == "short" || t == "int16") return as(std::int16_t());
+    if (t == "ushort" || t == "uint16") return as(std::uint16_t());
+    if (t == "int" || t == "int32") return as(std::int32_t());
+    if (t == "uint" || t == "uint32") return as(std::uint32_t());
+    if (t == "float" || t == "float32") return as(float());
+    return as(double());
+}
+
+SurfaceMesh read_ply(const std::string& path, std::istream& in)
+{
+    std::string line, format;
+    std::getline(in, line);
+    if (line.rfind("ply", 0) != 0) bad(path, "wrong magic number: a PLY file starts with 'ply'");
+    std::vector<PlyElement> elems;
+    while (std::getline(in, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream s(line);
+        std::string w;
+        s >> w;
+        if (w == "format") s >> format;
+        else if (w == "element") { elems.emplace_back(); s >> elems.back().name >> elems.back().count; }
+        else if (w == "property") {
+            if (elems.empty()) bad(path, "PLY property before any element");
+            PlyProp p;
+            s >> p.type;
+            if (p.type == "list") s >> p.count_type >> p.type;
+            s >> p.name;
+            elems.back().props.push_back(p);
+        } else if (w == "end_header") break;
+    }
+    if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        bad(path, "unsupported PLY format '" + format + "'");
+    const bool ascii = format == "ascii", big = format == "binary_big_endian";
+    SurfaceMesh m;
+    for (const auto& e : elems) {
+        for (std::size_t r = 0; r < e.count; ++r) {
+            std::array<double, 3> v{0, 0, 0};
+            std::vector<long long> poly;
+            for (const auto& p : e.props) {
+                auto read1 = [&](const std::string& t) {
+                    if (!ascii) return ply_binary(in, t, big, path);
+                    double x;
+                    if (!(in >> x)) bad(path, "truncated PLY data");
+                    return x;
+                };
+                if (!p.count_type.empty()) {
+                    const auto n = (long long)read1(p.count_type);
+                    std::vector<long long> items;
+                    for (long long k = 0; k < n; ++k) items.push_back((long long)read1(p.type));
+                    if (e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index")) poly = items;
+                } else {
+                    const double x = read1(p.type);
+                    if (e.name == "vertex") {
+                        if (p.name == "x") v[0] = x;
+                        if (p.name == "y") v[1] = x;
+                        if (p.name == "z") v[2] = x;
+                    }
+                }
+            }
+            if (e.name == "vertex") m.vertices.push_back(v);
+            if (e.name == "face") add_polygon(path, m, poly);
+        }
+    }
+    return m;
+}
+
+// ---- OBJ / OFF ----
+SurfaceMesh read_obj(const std::string& path, std::istream& in)
+{
+    SurfaceMesh m;
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream s(line);
+        std::string w;
+        s >> w;
+        if (w == "v") {
+            std::array<double, 3> v;
+            if (!(s >> v[0] >> v[1] >> v[2])) bad(path, "malformed vertex line '" + line + "'");
+            m.vertices.push_back(v);
+        } else if (w == "f") {
+            std::vector<long long> poly;
+            for (std::string tok; s >> tok;) {
+                long long i = std::stoll(tok.substr(0, tok.find('/')));
+                poly.push_back(i < 0 ? (long long)m.vertices.size() + i : i - 1); // negative: relative
+            }
+            add_polygon(path, m, poly);
+        }
+    }
+    return m;
+}
+
+SurfaceMesh read_off(const std::string& path, std::istream& in)
+{
+    // Comments may appear anywhere; strip them, then read the token stream.
+    std::stringstream body;
+    for (std::string line; std::getline(in, line);) body << line.substr(0, line.find('#')) << '\n';
+    std::string magic;
+    body >> magic;
+    if (magic != "OFF") bad(path, "wrong magic number: an OFF file starts with 'OFF'");
+    long long nv, nf, ne;
+    if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0) bad(path, "malformed OFF counts");
+    SurfaceMesh m;
+    m.vertices.resize(std::size_t(nv));
+    for (auto& v : m.vertices)
+        if (!(body >> v[0] >> v[1] >> v[2])) bad(path, "truncated OFF vertices");
+    for (long long f = 0; f < nf; ++f) {
+        long long n;
+        if (!(body >> n)) bad(path, "truncated OFF faces");
+        std::vector<long long> poly(std::size_t(std::max(0LL, n)));
+        for (auto& i : poly)
+            if (!(body >> i)) bad(path, "truncated OFF faces");
+        std::string rest;
+        add_polygon(path, m, poly);
+    }
+    return m;
+}
+
+// ---- STL ----
+SurfaceMesh read_stl(const std::string& path, std::istream& in, std::uint64_t size)
+{
+    std::vector<std::array<double, 3>> soup;
+    char header[84];
+    bool binary = false;
+    if (size >= 84 && in.read(header, 84)) {
+        std::uint32_t n;
+        std::memcpy(&n, header + 80, 4);
+        binary = size == 84 + std::uint64_t(n) * 50;
+        if (binary) {
+            for (std::uint32_t t = 0; t < n; ++t) {
+                char rec[50];
+                if (!in.read(rec, 50)) bad(path, "truncated STL data");
+                for (int k = 0; k < 3; ++k) {
+                    float v[3];
+                    std::memcpy(v, rec + 12 + 12 * k, 12);
+                    soup.push_back({v[0], v[1], v[2]});
+                }
+            }
+        }
+    }
+    if (!binary) {
+        in.clear();
+        in.seekg(0);
+        std::string w;
+        in >> w;
+        if (w != "solid") bad(path, "neither a binary STL (size mismatch) nor an ASCII STL ('solid')");
+        while (in >> w)
+            if (w == "vertex") {
+                std::array<double, 3> v;
+                if (!(in >> v[0] >> v[1] >> v[2])) bad(path, "malformed STL vertex");
+                soup.push_back(v);
+            }
+        if (soup.size() % 3) bad(path, "STL facet without three vertices");
+    }
+    SurfaceMesh m;
+    std::map<std::array<double, 3>, std::int32_t> index;
+    std::vector<long long> tri;
+    for (const auto& v : soup) {
+        auto [it, fresh] = index.emplace(v, std::int32_t(m.vertices.size()));
+        if (fresh) m.vertices.push_back(v);
+        tri.push_back(it->second);
+        if (tri.size() == 3) {
+            add_polygon(path, m, tri);
+            tri.clear();
+        }
+    }
+    return m;
+}
+
+} // namespace
+
+SurfaceMesh read_surface_mesh(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw IoError(path + ": cannot open: " + std::strerror(errno));
+    const auto size = std::uint64_t(in.tellg());
+    in.seekg(0);
+    const std::string ext = io::extension_of(path);
+    try {
+        if (ext == ".ply") return read_ply(path, in);
+        if (ext == ".obj") return read_obj(path, in);
+        if (ext == ".off") return read_off(path, in);
+        if (ext == ".stl") return read_stl(path, in, size);
+    } catch (const std::invalid_argument&) {
+        bad(path, "malformed number");
+    } catch (const std::out_of_range&) {
+        bad(path, "number out of range");
+    }
+    bad(path, "unknown surface mesh extension '" + ext + "' (expected .ply, .obj, .off or .stl)");
+}
+
+} // namespace isodel

@@ -1,0 +1,93 @@
+// OpenVDB files: any float or double scalar grid (double converted to float). Half-float storage
+// is decoded by OpenVDB itself. The grid's class picks the default inside side.
+#include "dense_volume.h"
+#include "readers.h"
+
+#include <isodel/errors.h>
+
+#include <algorithm>
+
+namespace isodel::io {
+namespace {
+
+bool is_scalar(const openvdb::GridBase& g)
+{
+    return g.isType<openvdb::FloatGrid>() || g.isType<openvdb::DoubleGrid>();
+}
+
+std::string grid_list(const openvdb::GridPtrVec& grids)
+{
+    if (grids.empty()) return "the file has no grids";
+    std::string s = "grids in the file: ";
+    for (std::size_t n = 0; n < grids.size(); ++n) {
+        if (n) s += ", ";
+        s += "'" + grids[n]->getName() + "' [" + grids[n]->valueType() + "]";
+    }
+    return s;
+}
+
+openvdb::FloatGrid::Ptr to_float_grid(const openvdb::GridBase::Ptr& base)
+{
+    if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) return f;
+    auto d = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
+    // Tree's converting copy constructor keeps topology and tiles and casts every value.
+    auto tree = std::make_shared<openvdb::FloatTree>(d->tree());
+    auto f = openvdb::FloatGrid::create(tree);
+    f->insertMeta(*d);
+    f->setTransform(d->transform().copy());
+    f->setName(d->getName());
+    f->setGridClass(d->getGridClass());
+    return f;
+}
+
+} // namespace
+
+Volume read_vdb(const std::string& path, const ReadOptions& opt)
+{
+    file_size_or_throw(path);
+    openvdb::initialize(); // idempotent; library users may not have called it
+    openvdb::io::File file(path);
+    try {
+        file.open(/*delayLoad=*/false);
+    } catch (const openvdb::Exception& e) {
+        invalid(path, std::string("not a readable OpenVDB file (wrong magic number or corrupt header): ") + e.what());
+    }
+    openvdb::GridPtrVec metas;
+    openvdb::GridBase::Ptr base;
+    try {
+        metas = *file.readAllGridMetadata();
+        std::string name = opt.grid_name;
+        if (!name.empty()) {
+            bool found = false;
+            for (const auto& g : metas) {
+                if (g->getName() != name) continue;
+                found = true;
+                if (!is_scalar(*g))
+                    invalid(path, "grid '" + name + "' is not a scalar grid (value type " + g->valueType() +
+                                      "); isodel reads float or double scalar grids");
+            }
+            if (!found) invalid(path, "no grid named '" + name + "' (" + grid_list(metas) + ")");
+        } else {
+            for (const auto& g : metas)
+                if (is_scalar(*g)) { name = g->getName(); break; }
+            if (name.empty() && !std::any_of(metas.begin(), metas.end(), [](auto& g) { return is_scalar(*g); }))
+                invalid(path, "no float or double scalar grid (" + grid_list(metas) + ")");
+        }
+        // readGrid(name) returns the first grid of that name, which is the one chosen above.
+        base = file.readGrid(name);
+        file.close();
+    } catch (const isodel::Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        io_failure(path, std::string("cannot read grid data (truncated or corrupt file?): ") + e.what());
+    }
+    Volume vol;
+    vol.path = path;
+    vol.format = "vdb";
+    vol.grid = to_float_grid(base);
+    vol.default_inside = vol.grid->getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above;
+    finish_volume(vol);
+    return vol;
+}
+
+} // namespace isodel::io
