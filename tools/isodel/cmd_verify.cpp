@@ -1,33 +1,71 @@
-// STUB until issue 5 lands: registers `isodel verify` with its interface (issue 2) so that
-// scripts and --help see it, and exits 2 saying it is not available yet.
+// isodel verify: certificates for the guarantees of `isodel mesh` on the user's own data
+// (include/isodel/verify.h). Exit 0 only if every requested check passes, 1 otherwise.
 #include "cli_common.h"
 
+#include <isodel/errors.h>
+#include <isodel/surface_mesh.h>
+#include <isodel/verify.h>
+
+#include "../../src/io/atomic_file.h" // internal, exported by libisodel
+
 #include <iostream>
+#include <memory>
 
 namespace isodel::cli {
-namespace {
-struct VerifyOptions {
-    InputOptions in;
-    std::string out, inside, tets, region, stats, importance, mesh, json;
-    double iso = 0, eps = 0, eps_voxels = 0.5, tolerance = 0, band = 0;
-    int threads = 0, k = 1;
-    bool quiet = false;
-};
-} // namespace
 
 void add_verify_command(CLI::App& app, int& exit_code)
 {
-    auto* cmd = app.add_subcommand("verify", "Check the guarantees of a mesh against its volume");
-    auto o = std::make_shared<VerifyOptions>();
-    add_input_options(*cmd, o->in);
-    cmd->add_option("--iso", o->iso, "Isovalue")->required();
-    cmd->add_option("--mesh", o->mesh, "Surface mesh to verify")->required();
-    cmd->add_option("--tets", o->tets, "Tetrahedral mesh to verify");
-    cmd->add_option("--eps", o->eps, "Hausdorff bound in world units");
-    cmd->add_option("--json", o->json, "Write the report as JSON");
-    cmd->callback([o, &exit_code] {
-        std::cerr << "isodel verify: not available yet (issue 5 has not landed)\n";
-        exit_code = kBadInput;
+    auto* cmd = app.add_subcommand("verify", "Check a surface mesh against the level set it claims to mesh: "
+                                             "topology, Hausdorff distance, Delaunay conformity, quality");
+    struct Args {
+        InputOptions in;
+        std::string mesh, json, tets, inside;
+        double iso = 0.0, eps = 0.0, eps_voxels = 0.0;
+        int refine = 4, max_refine = 16, sigma_refine = 0;
+        bool no_delaunay = false, no_self = false, strict = false, quiet = false;
+    };
+    auto a = std::make_shared<Args>();
+    add_input_options(*cmd, a->in);
+    cmd->add_option("--iso", a->iso, "Isovalue v")->required();
+    cmd->add_option("--mesh", a->mesh, "Surface mesh to verify (.ply/.obj/.off/.stl)")->required();
+    cmd->add_option("--eps", a->eps, "Hausdorff bound in world units");
+    cmd->add_option("--eps-voxels", a->eps_voxels, "Hausdorff bound in smallest voxel edges");
+    cmd->add_option("--inside", a->inside, "Which side is the solid (default: below for level sets, else above)")
+        ->check(CLI::IsMember({"above", "below"}));
+    cmd->add_option("--json", a->json, "Write the report as JSON");
+    cmd->add_option("--refine", a->refine, "Reference topology refinement R (R and 2R are compared)");
+    cmd->add_option("--max-refine", a->max_refine, "Keep doubling R up to this while the topology disagrees");
+    cmd->add_option("--sigma-refine", a->sigma_refine, "Sub-lattice refinement for sampling Sigma (0 = auto)");
+    cmd->add_option("--tets", a->tets, "Tetrahedral mesh to verify (not implemented yet)");
+    cmd->add_flag("--no-delaunay", a->no_delaunay, "Skip the Delaunay conformity check");
+    cmd->add_flag("--no-self-intersections", a->no_self, "Skip the self-intersection check");
+    cmd->add_flag("--strict-topology", a->strict, "An undetermined reference topology is a failure");
+    cmd->add_flag("-q,--quiet", a->quiet, "Print only the final verdict");
+    cmd->callback([a, &exit_code] {
+        if (!a->tets.empty()) throw InvalidInput("--tets: tetrahedral mesh verification is not implemented yet");
+        const Volume vol = read_input(a->in);
+        const SurfaceMesh mesh = read_surface_mesh(a->mesh);
+        VerifyOptions opt;
+        opt.isovalue = a->iso;
+        if (!a->inside.empty()) opt.inside = a->inside == "above" ? Inside::Above : Inside::Below;
+        else opt.inside = vol.default_inside;
+        opt.eps = a->eps;
+        opt.eps_voxels = a->eps_voxels;
+        opt.refine = a->refine;
+        opt.max_refine = a->max_refine;
+        opt.hausdorff_refine = a->sigma_refine;
+        opt.check_delaunay = !a->no_delaunay;
+        opt.check_self_intersections = !a->no_self;
+        opt.require_determined_topology = a->strict;
+        const VerifyReport rep = verify_surface(*vol.grid, mesh, opt);
+        if (!a->json.empty()) {
+            io::AtomicFile out(a->json);
+            out.stream() << rep.to_json();
+            out.commit();
+        }
+        if (a->quiet) std::cout << (rep.passed() ? "VERIFIED\n" : "NOT VERIFIED\n");
+        else std::cout << rep.summary();
+        exit_code = rep.passed() ? kOk : kFailed;
     });
 }
 

@@ -1,0 +1,150 @@
+#pragma once
+/// \file verify.h
+/// Certificates for the guarantees of include/isodel/mesh.h, computed WITHOUT the mesher's code:
+///  - the topology of Sigma = {F = v} from an exact refinement of the trilinear interpolant
+///    (marching tetrahedra on a Freudenthal subdivision of an R x refined sub-lattice of every
+///    cell Sigma crosses), at R and 2R ("undetermined" when they disagree);
+///  - the combinatorics of M (closed, 2-manifold, consistently and outward oriented, no
+///    self-intersections, components and genus), and the homeomorphism verdict;
+///  - the two-sided Hausdorff distance between M and Sigma against eps;
+///  - Delaunay conformity of every triangle of M, decided exactly (empty ball test);
+///  - triangle quality.
+/// The function F and its conventions (ties, domain) are those of octree/sample_field.h.
+/// Plain structs only (no CGAL types) so callers need not see CGAL.
+#include <isodel/surface_mesh.h>
+#include <isodel/volume.h>
+
+#include <openvdb/openvdb.h>
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace isodel {
+
+struct VerifyOptions {
+    double isovalue = 0.0;
+    std::optional<Inside> inside;  ///< default: Below for level-set grids, Above otherwise
+    double eps = 0.0;              ///< Hausdorff bound, world units; 0 = use eps_voxels
+    double eps_voxels = 0.0;       ///< ... in smallest voxel edges; both 0 = skip Hausdorff
+    int refine = 4;                ///< R: reference topology at R and 2R
+    /// When R and 2R disagree, keep doubling (2R vs 4R, ...) up to this refinement; the
+    /// reference is "determined" when two consecutive refinements agree. 0 = only R and 2R.
+    int max_refine = 16;
+    /// Sub-lattice refinement used to sample Sigma for Sigma -> M (spacing 1/R_h voxel);
+    /// 0 = automatic: clamp(ceil(1 / eps_voxels), 4, 12).
+    int hausdorff_refine = 0;
+    bool check_delaunay = true;
+    bool check_self_intersections = true;
+    /// Reference "undetermined" counts as a failure (default: reported, not failing).
+    bool require_determined_topology = false;
+};
+
+/// Topology of one connected component of a closed surface.
+struct VerifyComponent {
+    int euler = 0;
+    int genus = 0;
+    std::size_t triangles = 0;
+};
+
+struct ReferenceTopologyReport {
+    bool determined = false;
+    std::size_t crossed_cells = 0;          ///< cells of the grid with mixed phi signs
+    /// Each refinement tried, with the sorted genera it produced.
+    std::vector<int> refinements;
+    std::vector<std::vector<int>> genera;
+    std::vector<VerifyComponent> components; ///< of the finest agreeing refinement
+    double seconds = 0.0;
+};
+
+struct MeshTopologyReport {
+    std::size_t vertices = 0, triangles = 0;
+    std::size_t unreferenced_vertices = 0;
+    std::size_t degenerate_triangles = 0;   ///< repeated index or exactly collinear corners
+    std::size_t duplicate_triangles = 0;    ///< same vertex set as an earlier triangle
+    std::size_t boundary_edges = 0;         ///< edges with one triangle
+    std::size_t nonmanifold_edges = 0;      ///< edges with more than two triangles
+    std::size_t nonmanifold_vertices = 0;   ///< vertex link not a single cycle
+    std::size_t misoriented_edges = 0;      ///< two triangles traverse the edge the same way
+    std::size_t inward_components = 0;      ///< normals point into the inside region
+    bool closed = false, manifold = false, oriented = false, outward = false;
+    bool self_intersection_checked = false;
+    std::size_t self_intersecting_pairs = 0;
+    std::vector<VerifyComponent> components; ///< sorted by genus, then size
+};
+
+struct DistanceStats {
+    std::size_t samples = 0;
+    double max = 0.0, rms = 0.0;             ///< world units
+    double max_voxels = 0.0, rms_voxels = 0.0; ///< in smallest voxel edges
+    std::array<double, 3> argmax{0, 0, 0};   ///< world position of the worst sample
+    double sample_spacing = 0.0;             ///< world; sup <= max + sample_spacing
+};
+
+struct HausdorffReport {
+    bool checked = false;
+    double eps = 0.0, eps_voxels = 0.0;
+    DistanceStats mesh_to_surface, surface_to_mesh;
+    int sigma_refine = 0;                    ///< R_h used to sample Sigma
+    std::size_t fallback_queries = 0;        ///< M samples that needed the local search
+    std::size_t unresolved = 0;              ///< M samples with no point of Sigma found nearby
+    double seconds = 0.0;
+    bool passed = false;
+};
+
+struct DelaunayReport {
+    bool checked = false;
+    std::size_t triangles = 0;
+    std::size_t dt_facets = 0;               ///< facets of CGAL's Del(V(M))
+    std::size_t empty_ball_exact = 0;        ///< not a facet there, but an empty ball exists
+    std::size_t non_delaunay = 0;            ///< no empty ball: a violation
+    std::size_t degenerate = 0;              ///< collinear / repeated corners (violation)
+    std::vector<std::array<int, 3>> examples; ///< up to 10 violating triangles
+    double seconds = 0.0;
+    bool passed = false;
+};
+
+struct QualityReport {
+    /// Histogram of the smallest angle of each triangle, 6 bins of 10 degrees [0,10),...,[50,60].
+    std::array<std::size_t, 6> min_angle_histogram{};
+    double min_angle_deg = 0.0, mean_min_angle_deg = 0.0;
+    double max_radius_edge = 0.0, mean_radius_edge = 0.0; ///< circumradius / shortest edge
+};
+
+struct VerifyReport {
+    double effective_isovalue = 0.0;
+    std::string inside;
+    double voxel = 0.0;                      ///< smallest voxel edge (world)
+    ReferenceTopologyReport reference;
+    MeshTopologyReport mesh;
+    /// "pass", "fail" or "undetermined" (reference not determined).
+    std::string topology_verdict;
+    bool require_determined_topology = false;
+    HausdorffReport hausdorff;
+    DelaunayReport delaunay;
+    QualityReport quality;
+    bool tets_checked = false;               ///< --tets: not implemented yet
+    std::vector<std::string> notes;
+    double seconds = 0.0;
+
+    bool mesh_ok() const;
+    bool topology_ok() const;
+    bool hausdorff_ok() const { return !hausdorff.checked || hausdorff.passed; }
+    bool delaunay_ok() const { return !delaunay.checked || delaunay.passed; }
+    bool passed() const { return mesh_ok() && topology_ok() && hausdorff_ok() && delaunay_ok(); }
+    std::string to_json() const;
+    std::string summary() const; ///< readable multi-line text
+};
+
+/// Verifies \p mesh against {F = options.isovalue} of \p grid (see octree/sample_field.h).
+/// \throw InvalidInput bad options, empty grid, isovalue outside the range, non-affine transform
+VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& mesh,
+                            const VerifyOptions& options);
+
+/// The reference topology alone (check 1), e.g. to compare with a data set's expected topology.
+ReferenceTopologyReport reference_topology(const openvdb::FloatGrid& grid, double isovalue,
+                                           Inside inside, int refine = 4, int max_refine = 16);
+
+} // namespace isodel

@@ -1,0 +1,252 @@
+// Check 3: two-sided Hausdorff distance between M and Sigma, world and voxel units, max and RMS.
+//
+// M -> Sigma. Each triangle is sampled on a barycentric grid (vertices, edge points, interior
+// points, spacing <= eps/4). For a sample p the distance d(p, Sigma) is bounded ABOVE by |p - q|
+// for any q on Sigma; we take the best of two such q:
+//   1. Newton projection of p along the world gradient of F (converges to |phi| ~ roundoff);
+//   2. when 1. fails or gives more than eps/2 (where an overestimate could flip the verdict):
+//      a local reference - marching tetrahedra at R = 8 in every crossed cell meeting the ball
+//      B(p, d1) - the closest point on it to p, itself Newton-projected onto Sigma.
+// Since both are points of Sigma, the reported values are upper bounds of d(p, Sigma): the
+// reference contributes no error to a "pass" (only roundoff of the Newton tolerance, 1e-12 of
+// the value range). What remains is sampling: sup over M <= max + sample_spacing.
+//
+// Sigma -> M. Sigma is sampled by the crossings of every Freudenthal sub-lattice edge at
+// refinement R_h in every crossed cell, each Newton-projected onto Sigma; the distance to M is
+// exact (CGAL AABB tree of M's triangles). sup over Sigma <= max + sample_spacing (the length
+// of a sub-lattice diagonal, sqrt(3) voxel / R_h).
+#include "verify/checks.h"
+#include "verify/refined_lattice.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <unordered_set>
+
+namespace isodel::verify {
+namespace {
+
+struct Accum {
+    std::size_t n = 0;
+    double max = 0.0, sum2 = 0.0;
+    Vec3d argmax{0.0};
+    void add(double d, const Vec3d& at)
+    {
+        ++n;
+        sum2 += d * d;
+        if (d > max || n == 1) {
+            max = d;
+            argmax = at;
+        }
+    }
+    void merge(const Accum& o)
+    {
+        if (o.n && (o.max > max || n == 0)) {
+            max = o.max;
+            argmax = o.argmax;
+        }
+        n += o.n;
+        sum2 += o.sum2;
+    }
+    DistanceStats stats(double voxel, double spacing) const
+    {
+        DistanceStats s;
+        s.samples = n;
+        s.max = max;
+        s.rms = n ? std::sqrt(sum2 / double(n)) : 0.0;
+        s.max_voxels = max / voxel;
+        s.rms_voxels = s.rms / voxel;
+        s.argmax = {argmax[0], argmax[1], argmax[2]};
+        s.sample_spacing = spacing;
+        return s;
+    }
+};
+
+/// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3d closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c)
+{
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+    const Vec3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double den = 1.0 / (va + vb + vc);
+    return a + ab * (vb * den) + ac * (vc * den);
+}
+
+std::uint64_t cell_key(const Coord& c, const Coord& base)
+{
+    return (std::uint64_t(c[0] - base[0]) << 42) | (std::uint64_t(c[1] - base[1]) << 21) |
+           std::uint64_t(c[2] - base[2]);
+}
+
+} // namespace
+
+HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, double eps, int sigma_refine)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    HausdorffReport rep;
+    rep.checked = true;
+    const double voxel = field.voxel();
+    rep.eps = eps;
+    rep.eps_voxels = eps / voxel;
+    const int Rh = sigma_refine > 0 ? sigma_refine
+                                    : std::clamp(int(std::ceil(1.0 / rep.eps_voxels)), 4, 12);
+    rep.sigma_refine = Rh;
+
+    Coord base;
+    const std::vector<Coord> cells = crossed_cells(field, base);
+    std::unordered_set<std::uint64_t> crossed;
+    for (const Coord& c : cells) crossed.insert(cell_key(c, base));
+
+    auto vtx = [&](std::int32_t i) {
+        const auto& v = mesh.vertices[std::size_t(i)];
+        return Vec3d(v[0], v[1], v[2]);
+    };
+
+    // ---- Sigma -> M ----
+    using K = CGAL::Simple_cartesian<double>; // distances only; no predicate decides topology here
+    std::vector<K::Triangle_3> tris;
+    for (const auto& t : mesh.triangles) {
+        const Vec3d a = vtx(t[0]), b = vtx(t[1]), c = vtx(t[2]);
+        tris.emplace_back(K::Point_3(a[0], a[1], a[2]), K::Point_3(b[0], b[1], b[2]), K::Point_3(c[0], c[1], c[2]));
+    }
+    using Prim = CGAL::AABB_triangle_primitive<K, std::vector<K::Triangle_3>::const_iterator>;
+    using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Prim>>;
+    Accum s2m;
+    if (!tris.empty()) {
+        Tree tree(tris.cbegin(), tris.cend());
+        tree.accelerate_distance_queries();
+        struct Local {
+            TrilinearField::Evaluator ev;
+            CellRefiner refiner;
+            Accum acc;
+        };
+        tbb::enumerable_thread_specific<Local> locals([&] { return Local{TrilinearField::Evaluator(field), CellRefiner(Rh), {}}; });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 16), [&](const auto& r) {
+            Local& L = locals.local();
+            for (std::size_t i = r.begin(); i != r.end(); ++i)
+                L.refiner.crossings(L.ev.reader(), cells[i], [&](const Vec3d& x) {
+                    Vec3d y;
+                    if (!L.ev.project(x, y)) return; // not on Sigma: not a valid sample
+                    const Vec3d w = field.to_world(y);
+                    const double d = std::sqrt(tree.squared_distance(K::Point_3(w[0], w[1], w[2])));
+                    L.acc.add(d, w);
+                });
+        });
+        for (auto& L : locals) s2m.merge(L.acc);
+    }
+    rep.surface_to_mesh = s2m.stats(voxel, std::sqrt(3.0) * voxel / Rh);
+
+    // ---- M -> Sigma ----
+    constexpr int kLocalR = 8;
+    constexpr std::size_t kFallbackBudget = 20000;
+    std::atomic<std::size_t> fallbacks{0}, unresolved{0};
+    double spacing = 0.0;
+    std::mutex spacing_mutex;
+    struct Local2 {
+        TrilinearField::Evaluator ev;
+        CellRefiner refiner;
+        Accum acc;
+        double spacing = 0.0;
+    };
+    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), CellRefiner(kLocalR), {}, 0.0}; });
+
+    auto local_search = [&](Local2& L, const Vec3d& p, double r, double& best) {
+        // Conservative index box of the world ball B(p, r): image of its world bounding box.
+        Vec3d lo(1e300), hi(-1e300);
+        for (int c = 0; c < 8; ++c) {
+            const Vec3d w = p + Vec3d(c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r);
+            const Vec3d x = field.to_index(w);
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], x[a]);
+                hi[a] = std::max(hi[a], x[a]);
+            }
+        }
+        Vec3d bestq;
+        double bestd = 1e300;
+        for (int k = int(std::floor(lo[2])); k <= int(std::floor(hi[2])); ++k)
+            for (int j = int(std::floor(lo[1])); j <= int(std::floor(hi[1])); ++j)
+                for (int i = int(std::floor(lo[0])); i <= int(std::floor(hi[0])); ++i) {
+                    const Coord c(i, j, k);
+                    if (c[0] < base[0] || c[1] < base[1] || c[2] < base[2] || !crossed.count(cell_key(c, base))) continue;
+                    L.refiner.run(L.ev.reader(), c, base, [&](const RefTriangle& t) {
+                        const Vec3d q = closest_on_triangle(p, field.to_world(t.pos[0]), field.to_world(t.pos[1]),
+                                                            field.to_world(t.pos[2]));
+                        const double d = (q - p).length();
+                        if (d < bestd) {
+                            bestd = d;
+                            bestq = q;
+                        }
+                    });
+                }
+        if (bestd == 1e300) return false;
+        Vec3d y;
+        if (!L.ev.project(field.to_index(bestq), y)) return false;
+        best = std::min(best, (field.to_world(y) - p).length());
+        return true;
+    };
+
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangles.size(), 64), [&](const auto& r) {
+        Local2& L = locals2.local();
+        for (std::size_t f = r.begin(); f != r.end(); ++f) {
+            const auto& t = mesh.triangles[f];
+            const Vec3d a = vtx(t[0]), b = vtx(t[1]), c = vtx(t[2]);
+            const double longest = std::max({(b - a).length(), (c - b).length(), (a - c).length()});
+            const int k = std::clamp(int(std::ceil(longest / (0.25 * eps))), 1, 16);
+            L.spacing = std::max(L.spacing, longest / k);
+            for (int i = 0; i <= k; ++i)
+                for (int j = 0; i + j <= k; ++j) {
+                    const Vec3d p = a + (b - a) * (double(i) / k) + (c - a) * (double(j) / k);
+                    Vec3d y;
+                    const bool ok = L.ev.project(field.to_index(p), y);
+                    double d = ok ? (field.to_world(y) - p).length() : 1e300;
+                    if ((!ok || d > 0.5 * eps) && fallbacks.fetch_add(1) < kFallbackBudget) {
+                        const double radius = ok ? d : 2.0 * eps + 2.0 * voxel;
+                        local_search(L, p, radius, d);
+                    }
+                    if (d == 1e300) {
+                        ++unresolved;
+                        continue;
+                    }
+                    L.acc.add(d, p);
+                }
+        }
+    });
+    Accum m2s;
+    for (auto& L : locals2) {
+        m2s.merge(L.acc);
+        std::lock_guard<std::mutex> lock(spacing_mutex);
+        spacing = std::max(spacing, L.spacing);
+    }
+    rep.mesh_to_surface = m2s.stats(voxel, spacing);
+    rep.fallback_queries = std::min<std::size_t>(fallbacks.load(), kFallbackBudget);
+    rep.unresolved = unresolved.load();
+    rep.passed = rep.unresolved == 0 && rep.mesh_to_surface.max <= eps && rep.surface_to_mesh.max <= eps &&
+                 !mesh.triangles.empty();
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return rep;
+}
+
+} // namespace isodel::verify

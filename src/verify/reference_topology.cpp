@@ -1,0 +1,175 @@
+// Check 1: the topology of Sigma without the mesher (see refined_lattice.h for why it is exact
+// in the limit and consistent at every R). Components and genus per component from the marching
+// tetrahedra surface: vertices merged by sub-lattice edge key, components by union-find, and
+// chi = V - E + F = V - F/2 per component (the surface is closed, every edge has two triangles).
+#include "verify/refined_lattice.h"
+
+#include <isodel/errors.h>
+#include <isodel/verify.h>
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+namespace isodel::verify {
+namespace {
+
+/// Open addressing hash map uint64 -> int32 (std::unordered_map costs ~4x the memory here).
+class KeyMap {
+public:
+    KeyMap() { rehash(1 << 16); }
+    /// Id of \p key, inserting next_id if absent.
+    std::int32_t get(std::uint64_t key, std::int32_t next_id)
+    {
+        if (2 * (size_ + 1) > keys_.size()) rehash(keys_.size() * 2);
+        std::size_t h = hash(key) & (keys_.size() - 1);
+        while (keys_[h] != kEmpty) {
+            if (keys_[h] == key) return vals_[h];
+            h = (h + 1) & (keys_.size() - 1);
+        }
+        keys_[h] = key;
+        vals_[h] = next_id;
+        ++size_;
+        return next_id;
+    }
+
+private:
+    static constexpr std::uint64_t kEmpty = ~std::uint64_t(0); // keys use 63 bits
+    static std::size_t hash(std::uint64_t k)
+    {
+        k ^= k >> 33;
+        k *= 0xff51afd7ed558ccdULL;
+        k ^= k >> 33;
+        return std::size_t(k);
+    }
+    void rehash(std::size_t cap)
+    {
+        std::vector<std::uint64_t> ok = std::move(keys_);
+        std::vector<std::int32_t> ov = std::move(vals_);
+        keys_.assign(cap, kEmpty);
+        vals_.assign(cap, 0);
+        for (std::size_t i = 0; i < ok.size(); ++i) {
+            if (ok[i] == kEmpty) continue;
+            std::size_t h = hash(ok[i]) & (cap - 1);
+            while (keys_[h] != kEmpty) h = (h + 1) & (cap - 1);
+            keys_[h] = ok[i];
+            vals_[h] = ov[i];
+        }
+    }
+    std::vector<std::uint64_t> keys_;
+    std::vector<std::int32_t> vals_;
+    std::size_t size_ = 0;
+};
+
+struct UnionFind {
+    std::vector<std::int32_t> p;
+    std::int32_t add()
+    {
+        p.push_back(std::int32_t(p.size()));
+        return p.back();
+    }
+    std::int32_t find(std::int32_t x)
+    {
+        while (p[std::size_t(x)] != x) x = p[std::size_t(x)] = p[std::size_t(p[std::size_t(x)])];
+        return x;
+    }
+    void unite(std::int32_t a, std::int32_t b)
+    {
+        a = find(a);
+        b = find(b);
+        if (a != b) p[std::size_t(std::max(a, b))] = std::min(a, b);
+    }
+};
+
+/// Components of the marching-tetrahedra surface at refinement R, sorted by (genus, triangles).
+std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std::vector<Coord>& cells,
+                                         const Coord& base, int R)
+{
+    KeyMap ids;
+    UnionFind uf;
+    std::vector<std::int32_t> tri_vertex; // one vertex per triangle, to count F per component
+    CellRefiner refiner(R);
+    octree::SampleField::Reader reader(field.samples());
+    for (const Coord& c : cells) {
+        refiner.run(reader, c, base, [&](const RefTriangle& t) {
+            std::int32_t v[3];
+            for (int q = 0; q < 3; ++q) {
+                v[q] = ids.get(t.key[q], std::int32_t(uf.p.size()));
+                if (v[q] == std::int32_t(uf.p.size())) uf.add();
+            }
+            uf.unite(v[0], v[1]);
+            uf.unite(v[0], v[2]);
+            tri_vertex.push_back(v[0]);
+        });
+    }
+    std::vector<std::int64_t> nv(uf.p.size(), 0), nf(uf.p.size(), 0);
+    for (std::size_t i = 0; i < uf.p.size(); ++i) ++nv[std::size_t(uf.find(std::int32_t(i)))];
+    for (std::int32_t v : tri_vertex) ++nf[std::size_t(uf.find(v))];
+    std::vector<VerifyComponent> out;
+    for (std::size_t r = 0; r < nv.size(); ++r) {
+        if (nv[r] == 0 || uf.p[r] != std::int32_t(r)) continue;
+        if (nf[r] % 2 != 0) throw Error("verify: reference surface not closed (odd triangle count)");
+        VerifyComponent comp;
+        comp.euler = int(nv[r] - nf[r] / 2);
+        comp.genus = (2 - comp.euler) / 2;
+        comp.triangles = std::size_t(nf[r]);
+        out.push_back(comp);
+    }
+    std::sort(out.begin(), out.end(), [](const VerifyComponent& a, const VerifyComponent& b) {
+        return a.genus != b.genus ? a.genus < b.genus : a.triangles < b.triangles;
+    });
+    return out;
+}
+
+std::vector<int> genera(const std::vector<VerifyComponent>& comps)
+{
+    std::vector<int> g;
+    for (const auto& c : comps) g.push_back(c.genus);
+    return g; // already sorted by genus
+}
+
+} // namespace
+
+ReferenceTopologyReport reference_topology(const TrilinearField& field, int refine, int max_refine)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    ReferenceTopologyReport rep;
+    Coord base;
+    const std::vector<Coord> cells = crossed_cells(field, base);
+    rep.crossed_cells = cells.size();
+    // R, 2R, then (if they disagree) keep doubling while within max_refine: near-critical data
+    // (a saddle value close to v) needs a finer lattice before the PL surface settles.
+    std::vector<VerifyComponent> prev = topology_at(field, cells, base, refine);
+    rep.refinements.push_back(refine);
+    rep.genera.push_back(genera(prev));
+    for (int R = 2 * refine;; R *= 2) {
+        std::vector<VerifyComponent> cur = topology_at(field, cells, base, R);
+        rep.refinements.push_back(R);
+        rep.genera.push_back(genera(cur));
+        if (rep.genera[rep.genera.size() - 2] == rep.genera.back()) {
+            rep.determined = true;
+            rep.components = std::move(cur);
+            break;
+        }
+        if (2 * R > std::max(max_refine, 2 * refine)) {
+            rep.components = std::move(cur);
+            break;
+        }
+        prev = std::move(cur);
+    }
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return rep;
+}
+
+} // namespace isodel::verify
+
+namespace isodel {
+
+ReferenceTopologyReport reference_topology(const openvdb::FloatGrid& grid, double isovalue,
+                                           Inside inside, int refine, int max_refine)
+{
+    verify::TrilinearField field(grid, isovalue, inside);
+    return verify::reference_topology(field, refine, max_refine);
+}
+
+} // namespace isodel
