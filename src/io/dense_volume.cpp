@@ -176,10 +176,20 @@ void finish_volume(Volume& vol)
         lo = std::min(lo, v);
         hi = std::max(hi, v);
     }
-    // Inactive voxels inside the lattice read as the background, so they are samples too.
+    // Inactive voxels inside the lattice are samples too: they read as their inactive value
+    // (a narrow-band level set's interior is -background) or, where no node exists, the background.
     if (tree.activeVoxelCount() < vol.lattice.volume()) {
         lo = std::min(lo, bg);
         hi = std::max(hi, bg);
+        for (auto it = vol.grid->cbeginValueOff(); it; ++it) {
+            if (!vol.lattice.hasOverlap(it.getBoundingBox())) continue;
+            const float v = *it;
+            if (!std::isfinite(v))
+                invalid(vol.path, std::string(std::isnan(v) ? "NaN" : "Inf") + " inactive value at index (i,j,k) = " +
+                                      coord_text(it.getCoord()) + "; non-finite samples are not accepted");
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
     }
     vol.value_min = lo;
     vol.value_max = hi;
