@@ -1,0 +1,179 @@
+#include "octree/adaptive_vdb_format.h"
+
+#include <isodel/errors.h>
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace isodel::octree {
+
+namespace {
+openvdb::Vec3i to_vec(const Coord& c) { return openvdb::Vec3i(c.x(), c.y(), c.z()); }
+Coord to_coord(const openvdb::Vec3i& v) { return Coord(v.x(), v.y(), v.z()); }
+
+template <typename T, typename MetaT>
+T meta_or(const openvdb::MetaMap& m, const char* key, T dflt)
+{
+    const auto p = m.getMetadata<MetaT>(key);
+    return p ? T(p->value()) : dflt;
+}
+
+std::string level_name(int l) { return "level_" + std::to_string(l); }
+
+// Finds the sample grid of an adaptive file among grids (with or without trees).
+openvdb::GridBase::Ptr find_samples(const openvdb::GridPtrVec& grids)
+{
+    for (const auto& g : grids)
+        if (g && is_adaptive_sample_grid(*g)) return g;
+    return nullptr;
+}
+} // namespace
+
+bool is_adaptive_sample_grid(const openvdb::GridBase& g)
+{
+    return g.getMetadata<openvdb::Int32Metadata>("isodel_adaptive") != nullptr;
+}
+
+AdaptiveGrid to_adaptive_grid(const AdaptiveVolume& v)
+{
+    if (!v.samples) throw InvalidInput("adaptive volume without samples");
+    if (v.domain.empty()) return AdaptiveGrid(v.samples, v.k);
+    std::vector<openvdb::MaskGrid::Ptr> masks = v.levels;
+    return AdaptiveGrid(v.samples, v.domain, masks, v.k);
+}
+
+} // namespace isodel::octree
+
+namespace isodel {
+
+using namespace isodel::octree;
+
+AdaptiveVolume uniform_adaptive(openvdb::FloatGrid::Ptr grid, int k)
+{
+    AdaptiveVolume v;
+    const AdaptiveGrid g(grid, k); // derives the domain; no masks
+    v.samples = std::move(grid);
+    v.levels.resize(1);
+    v.domain = g.domain();
+    v.k = k;
+    return v;
+}
+
+void save_adaptive(const std::string& path, const AdaptiveVolume& v)
+{
+    if (!v.samples) throw InvalidInput(path + ": adaptive volume without samples");
+    // Shallow copy: shares the tree, so the caller's grid metadata is untouched.
+    auto s = openvdb::gridPtrCast<openvdb::FloatGrid>(v.samples->copyGrid());
+    s->setSaveFloatAsHalf(false); // save -> load must be exact
+    if (s->getName().empty()) s->setName("samples");
+    const AdaptiveGrid g = to_adaptive_grid(v);
+    s->insertMeta("isodel_adaptive", openvdb::Int32Metadata(kAdaptiveFormatVersion));
+    s->insertMeta("isodel_k", openvdb::Int32Metadata(v.k));
+    s->insertMeta("isodel_levels", openvdb::Int32Metadata(g.max_level() + 1));
+    s->insertMeta("isodel_tolerance", openvdb::DoubleMetadata(v.tolerance));
+    s->insertMeta("isodel_source", openvdb::StringMetadata(v.source));
+    s->insertMeta("isodel_domain_min", openvdb::Vec3IMetadata(to_vec(g.domain().min())));
+    s->insertMeta("isodel_domain_max", openvdb::Vec3IMetadata(to_vec(g.domain().max())));
+    openvdb::GridPtrVec grids{s};
+    for (int l = 1; l <= g.max_level(); ++l) {
+        openvdb::MaskGrid::Ptr m = g.masks()[l] ? openvdb::gridPtrCast<openvdb::MaskGrid>(g.masks()[l]->copyGrid())
+                                                : openvdb::MaskGrid::create(false);
+        if (!g.masks()[l]) {
+            auto xf = s->transform().copy();
+            xf->preScale(double(1 << l));
+            m->setTransform(xf);
+        }
+        m->setName(level_name(l));
+        m->insertMeta("isodel_level", openvdb::Int32Metadata(l));
+        grids.push_back(m);
+    }
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    try {
+        openvdb::io::File f(tmp);
+        f.write(grids);
+        f.close();
+    } catch (const std::exception& e) {
+        std::remove(tmp.c_str());
+        throw IoError(path + ": cannot write: " + e.what());
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw IoError(path + ": cannot rename the temporary file into place");
+    }
+}
+
+AdaptiveVolume load_adaptive(const std::string& path)
+{
+    openvdb::GridPtrVec grids;
+    try {
+        openvdb::io::File f(path);
+        f.open();
+        grids = *f.getGrids();
+        f.close();
+    } catch (const std::exception& e) {
+        throw IoError(path + ": cannot read: " + e.what());
+    }
+    auto base = find_samples(grids);
+    if (!base) throw InvalidInput(path + ": not an isodel adaptive file (no isodel_adaptive metadata)");
+    auto s = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (!s) throw InvalidInput(path + ": adaptive sample grid is not a float grid");
+    AdaptiveVolume v;
+    v.samples = s;
+    v.k = meta_or<int, openvdb::Int32Metadata>(*s, "isodel_k", 1);
+    v.tolerance = meta_or<double, openvdb::DoubleMetadata>(*s, "isodel_tolerance", 0.0);
+    v.source = meta_or<std::string, openvdb::StringMetadata>(*s, "isodel_source", std::string());
+    const int levels = meta_or<int, openvdb::Int32Metadata>(*s, "isodel_levels", 1);
+    const auto dmin = s->getMetadata<openvdb::Vec3IMetadata>("isodel_domain_min");
+    const auto dmax = s->getMetadata<openvdb::Vec3IMetadata>("isodel_domain_max");
+    if (!dmin || !dmax || levels < 1 || levels > AdaptiveGrid::kMaxLevel + 1)
+        throw InvalidInput(path + ": inconsistent isodel adaptive metadata");
+    v.domain = CoordBBox(to_coord(dmin->value()), to_coord(dmax->value()));
+    v.levels.assign(levels, nullptr);
+    for (const auto& g : grids)
+        for (int l = 1; l < levels; ++l)
+            if (g && g->getName() == level_name(l)) {
+                auto m = openvdb::gridPtrCast<openvdb::MaskGrid>(g);
+                if (!m) throw InvalidInput(path + ": grid " + level_name(l) + " is not a mask grid");
+                v.levels[l] = m;
+            }
+    for (int l = 1; l < levels; ++l)
+        if (!v.levels[l]) throw InvalidInput(path + ": missing grid " + level_name(l));
+    return v;
+}
+
+std::optional<AdaptiveInfo> adaptive_info(const std::string& path)
+{
+    try {
+        openvdb::io::File f(path);
+        f.open();
+        const auto metas = f.readAllGridMetadata();
+        auto base = find_samples(*metas);
+        if (!base) return std::nullopt;
+        AdaptiveInfo info;
+        info.sample_grid = base->getName();
+        info.k = meta_or<int, openvdb::Int32Metadata>(*base, "isodel_k", 1);
+        info.levels = meta_or<int, openvdb::Int32Metadata>(*base, "isodel_levels", 1);
+        info.tolerance = meta_or<double, openvdb::DoubleMetadata>(*base, "isodel_tolerance", 0.0);
+        info.source = meta_or<std::string, openvdb::StringMetadata>(*base, "isodel_source", std::string());
+        const auto dmin = base->getMetadata<openvdb::Vec3IMetadata>("isodel_domain_min");
+        const auto dmax = base->getMetadata<openvdb::Vec3IMetadata>("isodel_domain_max");
+        if (!dmin || !dmax) return std::nullopt;
+        info.domain = CoordBBox(to_coord(dmin->value()), to_coord(dmax->value()));
+        info.histogram.assign(std::max(1, info.levels), 0);
+        std::uint64_t covered = 0;
+        for (int l = 1; l < info.levels; ++l) {
+            if (!f.hasGrid(level_name(l))) return std::nullopt;
+            info.histogram[l] = f.readGrid(level_name(l))->activeVoxelCount();
+            covered += info.histogram[l] << (3 * l);
+        }
+        const CoordBBox cells(info.domain.min(), info.domain.max().offsetBy(-1));
+        info.histogram[0] = cells.volume() - covered;
+        for (auto n : info.histogram) info.cells += n;
+        f.close();
+        return info;
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+}
+
+} // namespace isodel
