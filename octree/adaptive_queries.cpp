@@ -185,6 +185,35 @@ std::vector<AdaptiveEdgeCrossing> adaptive_edge_crossings(const AdaptiveGrid& g,
                       });
     std::vector<AdaptiveEdgeCrossing> out;
     for (auto& v : per) out.insert(out.end(), v.begin(), v.end());
+    // The outside ring (sample_field.h): beyond the domain phi = outside_phi, so an inside node on
+    // the domain boundary gives a crossing on its unit edge leading out (as edge_crossings.h).
+    {
+        InterpolantReader ir(g);
+        const CoordBBox& d = g.domain();
+        const double s = f.inside() == Inside::Above ? 1.0 : -1.0;
+        const double v_out = f.effective_isovalue() + f.outside_phi() / s;
+        for (int a = 0; a < 3; ++a)
+            for (int side = 0; side < 2; ++side) {
+                CoordBBox face = d;
+                face.min()[a] = face.max()[a] = side ? d.max()[a] : d.min()[a];
+                for (auto it = face.begin(); it; ++it) {
+                    const double v = ir.node_value(*it);
+                    if (!(f.phi_of_value(v) > 0)) continue;
+                    AdaptiveEdgeCrossing x;
+                    x.edge.axis = a;
+                    x.edge.length = 1;
+                    x.edge.start = *it;
+                    if (!side) x.edge.start[a] -= 1;
+                    x.edge.v0 = side ? v : v_out;
+                    x.edge.v1 = side ? v_out : v;
+                    const double p0 = f.phi_of_value(x.edge.v0), p1 = f.phi_of_value(x.edge.v1);
+                    x.t = p0 / (p0 - p1);
+                    x.point = Vec3d(x.edge.start.x(), x.edge.start.y(), x.edge.start.z());
+                    x.point[a] += x.t;
+                    out.push_back(x);
+                }
+            }
+    }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
         return a.edge.start != b.edge.start ? a.edge.start < b.edge.start : a.edge.axis < b.edge.axis;
     });
