@@ -29,10 +29,14 @@ struct VerifyOptions {
     std::optional<Inside> inside;  ///< default: Below for level-set grids, Above otherwise
     double eps = 0.0;              ///< Hausdorff bound, world units; 0 = use eps_voxels
     double eps_voxels = 0.0;       ///< ... in smallest voxel edges; both 0 = skip Hausdorff
-    int refine = 4;                ///< R: reference topology at R and 2R
+    /// R: reference topology at R and 2R. R is a minimum: it is raised (up to 16) while the 2R
+    /// lattice stays within refine_budget samples (crossed cells x (2R)^3), because low R can
+    /// agree on a wrong answer for near-critical data.
+    int refine = 4;
+    double refine_budget = 6.4e7;
     /// When R and 2R disagree, keep doubling (2R vs 4R, ...) up to this refinement; the
     /// reference is "determined" when two consecutive refinements agree. 0 = only R and 2R.
-    int max_refine = 16;
+    int max_refine = 32;
     /// Sub-lattice refinement used to sample Sigma for Sigma -> M (spacing 1/R_h voxel);
     /// 0 = automatic: clamp(ceil(1 / eps_voxels), 4, 12).
     int hausdorff_refine = 0;
@@ -145,6 +149,7 @@ VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& m
 
 /// The reference topology alone (check 1), e.g. to compare with a data set's expected topology.
 ReferenceTopologyReport reference_topology(const openvdb::FloatGrid& grid, double isovalue,
-                                           Inside inside, int refine = 4, int max_refine = 16);
+                                           Inside inside, int refine = 4, int max_refine = 32,
+                                           double refine_budget = 6.4e7);
 
 } // namespace isodel

@@ -11,7 +11,7 @@
 namespace isodel::verify {
 
 /// Check 1 (reference_topology.cpp).
-ReferenceTopologyReport reference_topology(const TrilinearField& field, int refine, int max_refine);
+ReferenceTopologyReport reference_topology(const TrilinearField& field, int refine, int max_refine, double budget);
 
 /// Check 2, combinatorial part (mesh_topology.cpp). \p tri_component receives, per triangle, the
 /// index of its component in report.components. \throw InvalidInput index out of range.

@@ -130,7 +130,7 @@ std::vector<int> genera(const std::vector<VerifyComponent>& comps)
 
 } // namespace
 
-ReferenceTopologyReport reference_topology(const TrilinearField& field, int refine, int max_refine)
+ReferenceTopologyReport reference_topology(const TrilinearField& field, int refine, int max_refine, double budget)
 {
     const auto t0 = std::chrono::steady_clock::now();
     ReferenceTopologyReport rep;
@@ -139,6 +139,12 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
     rep.crossed_cells = cells.size();
     // R, 2R, then (if they disagree) keep doubling while within max_refine: near-critical data
     // (a saddle value close to v) needs a finer lattice before the PL surface settles.
+    // R itself is raised above \p refine while the 2R level stays within \p budget sub-lattice
+    // samples: on random data R = 4 and 8 can agree on a spurious handle of the PL surface
+    // (cells/random_n6_s1: genus 9 at R = 4, 8; 8 from R = 16 on, as the manifest says), and
+    // small volumes can afford much finer lattices.
+    const double per_cell = budget / double(std::max<std::size_t>(cells.size(), 1));
+    refine = std::max(refine, std::min(16, int(std::floor(std::cbrt(per_cell) / 2.0))));
     std::vector<VerifyComponent> prev = topology_at(field, cells, base, refine);
     rep.refinements.push_back(refine);
     rep.genera.push_back(genera(prev));
@@ -166,10 +172,10 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
 namespace isodel {
 
 ReferenceTopologyReport reference_topology(const openvdb::FloatGrid& grid, double isovalue,
-                                           Inside inside, int refine, int max_refine)
+                                           Inside inside, int refine, int max_refine, double budget)
 {
     verify::TrilinearField field(grid, isovalue, inside);
-    return verify::reference_topology(field, refine, max_refine);
+    return verify::reference_topology(field, refine, max_refine, budget);
 }
 
 } // namespace isodel

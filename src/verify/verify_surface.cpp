@@ -38,7 +38,7 @@ VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& m
         rep.notes.push_back("some samples equal the isovalue: meshing v* = v - d (sample_field.h tie rule)");
 
     // 1. Reference topology.
-    rep.reference = verify::reference_topology(field, options.refine, options.max_refine);
+    rep.reference = verify::reference_topology(field, options.refine, options.max_refine, options.refine_budget);
 
     // 2. M itself.
     std::vector<int> tri_component;

@@ -21,7 +21,7 @@ void add_verify_command(CLI::App& app, int& exit_code)
         InputOptions in;
         std::string mesh, json, tets, inside;
         double iso = 0.0, eps = 0.0, eps_voxels = 0.0;
-        int refine = 4, max_refine = 16, sigma_refine = 0;
+        int refine = 4, max_refine = 32, sigma_refine = 0;
         bool no_delaunay = false, no_self = false, strict = false, quiet = false;
     };
     auto a = std::make_shared<Args>();

@@ -1,0 +1,93 @@
+// Reference topology of Sigma (check 1) on analytic volumes built in memory and on the single-cell
+// ambiguity cases and random volumes of ../shared/data (manifest expected_topology). The analytic
+// and larger volumes of ../shared/data are in tests/corpus/test_verify_manifest_topology.cpp.
+#include <catch2/catch.hpp>
+
+#include "verify_test_support.h"
+
+#include <isodel/verify.h>
+
+#include <algorithm>
+
+using namespace isodel;
+using openvdb::Vec3d;
+
+namespace {
+
+std::vector<int> genera(const ReferenceTopologyReport& r)
+{
+    std::vector<int> g;
+    for (const auto& c : r.components) g.push_back(c.genus);
+    return g;
+}
+
+} // namespace
+
+TEST_CASE("reference topology: analytic volumes in memory", "[verify][reference]")
+{
+    const Vec3d c(12.3, 12.6, 12.1);
+    SECTION("sphere")
+    {
+        auto g = testing::make_grid(26, 1.0, Vec3d(0.0), [&](const Vec3d& x) { return testing::sphere_f(x, c, 7.0); });
+        const auto r = reference_topology(*g, 0.0, Inside::Above);
+        CHECK(r.determined);
+        CHECK(genera(r) == std::vector<int>{0});
+        CHECK(r.components[0].euler == 2);
+    }
+    SECTION("torus, inside below (sign flipped)")
+    {
+        auto g = testing::make_grid(26, 0.1, Vec3d(0.0), [&](const Vec3d& x) { return -testing::torus_f(x, c, 7.0, 2.5); }, 1.0f);
+        const auto r = reference_topology(*g, 0.0, Inside::Below);
+        CHECK(r.determined);
+        CHECK(genera(r) == std::vector<int>{1});
+    }
+    SECTION("two spheres and a hollow shell")
+    {
+        auto g = testing::make_grid(40, 1.0, Vec3d(0.0), [&](const Vec3d& x) {
+            const double a = testing::sphere_f(x, Vec3d(10.2, 10.1, 10.3), 6.0);
+            const double shell = std::min(testing::sphere_f(x, Vec3d(27.3, 26.8, 27.1), 9.0),
+                                          -testing::sphere_f(x, Vec3d(27.3, 26.8, 27.1), 5.0));
+            return std::max(a, shell);
+        });
+        const auto r = reference_topology(*g, 0.0, Inside::Above);
+        CHECK(r.determined);
+        CHECK(genera(r) == std::vector<int>{0, 0, 0});
+    }
+    SECTION("a blob smaller than a voxel around one sample")
+    {
+        auto g = testing::make_grid(6, 1.0, Vec3d(0.0), [&](const Vec3d& x) { return x == Vec3d(3, 3, 3) ? 0.2 : -1.0; });
+        const auto r = reference_topology(*g, 0.0, Inside::Above);
+        CHECK(r.determined);
+        CHECK(genera(r) == std::vector<int>{0});
+    }
+}
+
+TEST_CASE("reference topology: single-cell cases and random volumes of ../shared/data", "[verify][reference]")
+{
+    const auto manifest = testing::read_manifest();
+    if (manifest.type != minijson::Value::Array) {
+        WARN("../shared/data not found at " << testing::shared_data() << ": test skipped");
+        SUCCEED();
+        return;
+    }
+    int checked = 0, undetermined = 0;
+    for (const auto& e : manifest.arr) {
+        const std::string file = e["file"].as_string();
+        const std::string cat = e["category"].as_string();
+        if (e["format"].as_string() != "vdb" || (cat != "mc-ambiguity-cell" && cat != "random")) continue;
+        if (!e.has("expected_topology")) continue;
+        auto grid = testing::read_vdb(testing::shared_data() + "/" + file, e["grid_name"].as_string());
+        const Inside inside = e["inside"].as_string() == "below" ? Inside::Below : Inside::Above;
+        const auto r = reference_topology(*grid, e["isovalue"].as_number(), inside, 4, 32);
+        std::vector<int> expected;
+        for (const auto& v : e["expected_topology"]["genus"].arr) expected.push_back(int(v.num));
+        std::sort(expected.begin(), expected.end());
+        INFO(file << " refinements " << r.refinements.size() << " last R " << r.refinements.back());
+        if (!r.determined) ++undetermined;
+        CHECK(r.determined);
+        CHECK(genera(r) == expected);
+        ++checked;
+    }
+    INFO("checked " << checked << ", undetermined " << undetermined);
+    CHECK(checked >= 40);
+}
