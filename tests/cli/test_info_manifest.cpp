@@ -1,0 +1,143 @@
+// `isodel info --json` on every volume of ../shared/data/manifest.json: dims, voxel size, origin
+// and value range must agree with the manifest and with an independent reader (mrcfile, vdb_print,
+// numpy). Entries marked expect_error must be refused with exit code 2.
+//
+// OpenVDB files store only active voxels: padding equal to the background is not in the file, so
+// the active box of a sparse .vdb (proteins, narrow bands, cells) can be smaller than the
+// manifest's lattice. For those the reported box must lie inside the manifest's and agree with
+// vdb_print exactly; for dense .vdb files (active box == manifest box) everything must be equal.
+#include "cli/mini_json.h"
+#include "io/test_files.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace isodel::test;
+
+namespace {
+
+const std::string kData = ISODEL_SHARED_DATA;
+
+bool close(double a, double b, double rel, double abs_tol = 1e-12)
+{
+    return std::abs(a - b) <= abs_tol + rel * std::max(std::abs(a), std::abs(b));
+}
+
+std::string independent_script() { return std::string(ISODEL_TEST_DATA) + "/../cli/independent_reader.py"; }
+
+} // namespace
+
+TEST_CASE("isodel info agrees with manifest.json and independent readers", "[cli][manifest]")
+{
+    if (!shared_data_present()) {
+        WARN("../shared/data (manifest.json) is absent: manifest test skipped, nothing was checked");
+        SUCCEED();
+        return;
+    }
+    TempDir tmp;
+    const Json manifest = parse_json(read_text(kData + "/manifest.json"));
+    REQUIRE(manifest.kind == Json::Array);
+    REQUIRE(manifest.size() > 0);
+    bool warned_independent = false;
+    std::size_t checked = 0, sparse_vdb = 0;
+    for (const Json& e : manifest.arr) {
+        const std::string file = e["file"].str;
+        const std::string path = kData + "/" + file;
+        INFO("manifest entry " << file);
+        const RunResult r = run_isodel("info --json " + shell_quote(path), tmp.path());
+        if (e.has("expect_error") && e["expect_error"].b) {
+            CHECK(r.status == 2);
+            CHECK(r.err.rfind("isodel: " + path + ": ", 0) == 0);
+            CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+            continue;
+        }
+        INFO("stderr: " << r.err);
+        REQUIRE(r.status == 0);
+        const Json info = parse_json(r.out);
+        const std::string fmt = e["format"].str;
+        CHECK(info["format"].str == fmt);
+        if (e.has("grid_name")) CHECK(info["grid_name"].str == e["grid_name"].str);
+        if (e.has("grid_class")) CHECK(info["grid_class"].str == e["grid_class"].str);
+
+        // Lattice.
+        std::array<int, 3> mdims{}, idims{};
+        for (int a = 0; a < 3; ++a) {
+            mdims[a] = int(e["dims"][a].num);
+            idims[a] = int(info["dims"][a].num);
+        }
+        bool dense = true;
+        if (fmt == "vdb") {
+            for (int a = 0; a < 3; ++a) {
+                CHECK(info["index_bbox"][0][a].num >= e["index_bbox"][0][a].num);
+                CHECK(info["index_bbox"][1][a].num <= e["index_bbox"][1][a].num);
+                if (info["index_bbox"][0][a].num != e["index_bbox"][0][a].num ||
+                    info["index_bbox"][1][a].num != e["index_bbox"][1][a].num)
+                    dense = false;
+            }
+            sparse_vdb += !dense;
+        }
+        if (dense) CHECK(idims == mdims);
+
+        // Voxel size and origin (world position of the manifest lattice's first sample).
+        for (int a = 0; a < 3; ++a)
+            CHECK(close(info["voxel_size"][a].num, e["voxel_size"][a].num, 1e-6));
+        std::array<double, 3> first{0, 0, 0};
+        if (e.has("index_bbox"))
+            for (int a = 0; a < 3; ++a) first[a] = e["index_bbox"][0][a].num;
+        const Json& M = info["index_to_world"];
+        for (int c = 0; c < 3; ++c) {
+            double w = M[3][c].num;
+            for (int r = 0; r < 3; ++r) w += first[r] * M[r][c].num;
+            CHECK(close(w, e["origin"][c].num, 1e-6, 1e-6));
+        }
+        if (e.has("index_to_world"))
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c) CHECK(close(M[r][c].num, e["index_to_world"][r][c].num, 1e-6, 1e-9));
+
+        // Value range: equal for dense lattices; inside the manifest's range otherwise.
+        const double mlo = e["value_range"][0].num, mhi = e["value_range"][1].num;
+        const double ilo = info["value_range"][0].num, ihi = info["value_range"][1].num;
+        const double tol = 1e-6 * std::max({std::abs(mlo), std::abs(mhi), 1e-30});
+        if (dense) {
+            CHECK(std::abs(ilo - mlo) <= tol);
+            CHECK(std::abs(ihi - mhi) <= tol);
+        } else {
+            CHECK(ilo >= mlo - tol);
+            CHECK(ihi <= mhi + tol);
+        }
+
+        // Independent reader.
+        const RunResult ind = run("/usr/bin/python3 " + shell_quote(independent_script()) + " " + shell_quote(path),
+                                  tmp.path());
+        if (ind.status == 3 || ind.status == 127) {
+            if (!warned_independent) WARN("independent reader unavailable (" << ind.out << ind.err << "): cross-check skipped");
+            warned_independent = true;
+        } else {
+            INFO("independent reader: " << ind.out << ind.err);
+            REQUIRE(ind.status == 0);
+            const Json ref = parse_json(ind.out);
+            for (int a = 0; a < 3; ++a) CHECK(idims[a] == int(ref["dims"][a].num));
+            if (fmt == "vdb") {
+                // vdb_print prints about 5 significant digits.
+                CHECK(info["active_voxels"].num == ref["active_voxels"].num);
+                CHECK(close(info["voxel_size"][0].num, ref["voxel_size_uniform"].num, 1e-2));
+                const double ptol = 1e-4 * std::max({std::abs(ihi), std::abs(ilo), 1e-30});
+                CHECK(ilo <= ref["active_range"][0].num + ptol);
+                CHECK(ihi >= ref["active_range"][1].num - ptol);
+                if (info["active_voxels"].num == double(idims[0]) * idims[1] * idims[2]) {
+                    CHECK(std::abs(ilo - ref["active_range"][0].num) <= ptol);
+                    CHECK(std::abs(ihi - ref["active_range"][1].num) <= ptol);
+                }
+            } else {
+                for (int a = 0; a < 3; ++a) CHECK(close(info["voxel_size"][a].num, ref["voxel_size"][a].num, 1e-6));
+                CHECK(close(ilo, ref["value_range"][0].num, 1e-6, tol));
+                CHECK(close(ihi, ref["value_range"][1].num, 1e-6, tol));
+            }
+        }
+        ++checked;
+    }
+    CHECK(checked + 1 >= manifest.size()); // all but the expect_error entry were read
+    if (sparse_vdb) WARN(sparse_vdb << " sparse .vdb files: active box inside the manifest lattice (see file comment)");
+}
