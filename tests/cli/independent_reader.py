@@ -33,9 +33,13 @@ def read_vdb(path):
     vmin = float(re.search(r"Min value:\s+(\S+)", out).group(1))
     vmax = float(re.search(r"Max value:\s+(\S+)", out).group(1))
     bg = float(re.search(r"Background value:\s+(\S+)", out).group(1))
-    vox = float(re.search(r"voxel size:\s+(\S+)", out).group(1))
+    uniform = re.search(r"voxel size:\s+(\S+)", out)
+    if uniform:
+        vox = [float(uniform.group(1))] * 3
+    else:  # anisotropic: "voxel dimensions: [a, b, c]"
+        vox = [float(x) for x in re.search(r"voxel dimensions:\s+\[([^\]]*)\]", out).group(1).split(",")]
     return {"tool": "vdb_print", "dims": dims, "active_voxels": active, "active_range": [vmin, vmax],
-            "background": bg, "voxel_size_uniform": vox}
+            "background": bg, "voxel_size_printed": vox}
 
 
 def read_inr(path):
