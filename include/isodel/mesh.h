@@ -68,6 +68,9 @@ struct MeshResult {
     MeshStats stats;
 };
 
+/// \p stats as a JSON object (counts, phase seconds, peak memory, voxel bounds, topology).
+std::string to_json(const MeshStats& stats);
+
 /// Meshes {F = options.isovalue} of \p grid.
 /// \throw InvalidInput isovalue outside the value range, empty grid, bad options
 /// \throw GuaranteeViolated a stated bound stopped refinement (message names it)

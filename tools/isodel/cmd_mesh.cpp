@@ -1,16 +1,24 @@
-// STUB until issue 4 lands: registers `isodel mesh` with its interface (issue 2) so that
-// scripts and --help see it, and exits 2 saying it is not available yet.
+// isodel mesh: read a volume, run DELSURFMESH (include/isodel/mesh.h), write the surface and
+// optionally the statistics. Outputs are written atomically, after meshing succeeded.
 #include "cli_common.h"
 
+#include "io/atomic_file.h"
+
+#include <isodel/errors.h>
+#include <isodel/mesh.h>
+
+#include <chrono>
 #include <iostream>
 
 namespace isodel::cli {
 namespace {
-struct MeshOptions {
+struct MeshCliOptions {
     InputOptions in;
-    std::string out, inside, tets, region, stats, importance, mesh, json;
-    double iso = 0, eps = 0, eps_voxels = 0.5, tolerance = 0, band = 0;
-    int threads = 0, k = 1;
+    std::string out, inside, tets, region = "inside", stats;
+    double iso = 0, eps = 0, eps_voxels = 0.5;
+    int threads = 0;
+    int max_rounds = 2000;
+    std::size_t max_points = 0;
     bool quiet = false;
 };
 } // namespace
@@ -18,25 +26,70 @@ struct MeshOptions {
 void add_mesh_command(CLI::App& app, int& exit_code)
 {
     auto* cmd = app.add_subcommand("mesh", "Mesh the level set {F = iso} of a volume (DELSURFMESH)");
-    auto o = std::make_shared<MeshOptions>();
+    auto o = std::make_shared<MeshCliOptions>();
     add_input_options(*cmd, o->in);
     cmd->add_option("-o,--output", o->out, "Output surface (.ply, .obj, .off, .stl)")->required();
     cmd->add_option("--iso", o->iso, "Isovalue")->required();
     cmd->add_option("--inside", o->inside, "Which side is inside: above|below (default from the grid class)")
         ->check(CLI::IsMember({"above", "below"}));
     auto* eps = cmd->add_option("--eps", o->eps, "Hausdorff bound in world units");
-    cmd->add_option("--eps-voxels", o->eps_voxels, "Hausdorff bound in voxels (default 0.5)")->excludes(eps);
+    cmd->add_option("--eps-voxels", o->eps_voxels, "Hausdorff bound in units of the smallest voxel edge (default 0.5)")
+        ->excludes(eps);
     cmd->add_option("--tets", o->tets, "Also write a tetrahedral mesh (.mesh, .vtu, .msh)");
     cmd->add_option("--region", o->region, "Tetrahedra to keep: inside|outside|both")
         ->check(CLI::IsMember({"inside", "outside", "both"}));
-    cmd->add_option("--threads", o->threads, "Threads (0 = all)");
+    cmd->add_option("--threads", o->threads, "Threads (0 = all); the mesh does not depend on it");
     cmd->add_option("--stats", o->stats, "Write statistics as JSON");
+    cmd->add_option("--max-rounds", o->max_rounds, "Bound on refinement rounds");
+    cmd->add_option("--max-points", o->max_points, "Bound on inserted points (0 = automatic)");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->callback([o, &exit_code] {
-        // Bad input is refused even before the mesher lands: the isovalue must lie in the range.
-        check_isovalue(read_input(o->in), o->iso);
-        std::cerr << "isodel mesh: not available yet (issue 4 has not landed)\n";
-        exit_code = kBadInput;
+        if (!o->tets.empty())
+            throw InvalidInput("--tets: tetrahedral meshing (DELVOLMESH, issue 6) is not available yet");
+        if (!(o->eps >= 0) || !(o->eps_voxels > 0)) throw InvalidInput("--eps/--eps-voxels must be positive");
+        // Refuse unknown output formats before doing any work.
+        const std::string ext = io::extension_of(o->out);
+        if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
+            throw InvalidInput(o->out + ": unknown surface format '" + ext + "' (use .ply, .obj, .off or .stl)");
+        ProgressReporter progress(o->quiet);
+        const auto t0 = std::chrono::steady_clock::now();
+        progress.start("read");
+        const Volume vol = read_input(o->in);
+        check_isovalue(vol, o->iso);
+        progress.end();
+        const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+        MeshOptions mo;
+        mo.isovalue = o->iso;
+        mo.inside = o->inside.empty() ? vol.default_inside
+                                      : (o->inside == "above" ? Inside::Above : Inside::Below);
+        mo.eps = o->eps;
+        mo.eps_voxels = o->eps_voxels;
+        mo.threads = o->threads;
+        mo.max_rounds = o->max_rounds;
+        mo.max_points = o->max_points;
+        MeshResult res = mesh_isosurface(*vol.grid, mo, &progress);
+
+        const auto tw = std::chrono::steady_clock::now();
+        progress.start("write");
+        write_surface_mesh(o->out, res.surface);
+        progress.end();
+        res.stats.seconds["read"] = t_read;
+        res.stats.seconds["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
+        res.stats.seconds["total"] += t_read + res.stats.seconds["write"];
+        if (!o->stats.empty()) {
+            io::AtomicFile f(o->stats);
+            f.stream() << to_json(res.stats);
+            f.commit();
+        }
+        if (!o->quiet) {
+            std::cerr << "isodel mesh: wrote " << o->out << " (" << res.stats.vertices << " vertices, "
+                      << res.stats.triangles << " triangles, " << res.stats.components.size()
+                      << " components; genus";
+            for (const auto& c : res.stats.components) std::cerr << ' ' << c.genus;
+            std::cerr << ")\n";
+        }
+        exit_code = kOk;
     });
 }
 

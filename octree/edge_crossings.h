@@ -1,0 +1,33 @@
+#pragma once
+/// \file edge_crossings.h
+/// E: the points where Sigma crosses grid edges (paper Section 4.1, step 1). On a cell edge the
+/// trilinear interpolant is linear, so the crossing is exact: t = phi(a) / (phi(a) - phi(b)).
+/// Samples are never exactly on v* (sample_field.h), so 0 < t < 1: E points never coincide
+/// with grid points.
+#include "octree/sample_field.h"
+
+#include <openvdb/openvdb.h>
+
+#include <vector>
+
+namespace isodel::octree {
+
+struct EdgePoint {
+    Vec3d index_pos; ///< position in index space
+    Coord lower;     ///< lower endpoint of the grid edge
+    int axis;        ///< 0,1,2: the edge runs from lower to lower + e_axis
+};
+
+struct EdgeCrossings {
+    std::vector<EdgePoint> points;
+    /// Cells (by lower corner) that Sigma passes through: the cells incident to a crossed edge.
+    /// A trilinear cell whose corners all have one sign holds no part of Sigma (a multilinear
+    /// function attains its extrema at the vertices), so these are all of them.
+    openvdb::MaskGrid::Ptr crossed_cells;
+};
+
+/// All crossings on the edges of the sample lattice (domain grown by the outside ring), in
+/// OpenVDB's deterministic iteration order.
+EdgeCrossings edge_crossings(const SampleField& field);
+
+} // namespace isodel::octree

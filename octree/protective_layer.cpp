@@ -1,0 +1,56 @@
+#include "octree/protective_layer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isodel::octree {
+
+std::array<int, 3> layer_radius(const SampleField& field)
+{
+    const auto& xf = field.transform();
+    const Vec3d o = xf.indexToWorld(Vec3d(0.0));
+    Vec3d e[3];
+    for (int a = 0; a < 3; ++a) {
+        Vec3d u(0.0);
+        u[a] = 1.0;
+        e[a] = xf.indexToWorld(u) - o;
+    }
+    const double vol = std::abs(e[0].dot(e[1].cross(e[2])));
+    std::array<int, 3> r{};
+    for (int a = 0; a < 3; ++a) {
+        const Vec3d& eb = e[(a + 1) % 3];
+        const Vec3d& ec = e[(a + 2) % 3];
+        const double h = vol / eb.cross(ec).length();                       // plane spacing
+        const double R = 0.5 * std::max((eb + ec).length(), (eb - ec).length()); // covering radius bound
+        r[a] = std::max(1, int(std::floor(R / h)) + 1);
+    }
+    return r;
+}
+
+ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGrid& crossed_cells)
+{
+    ProtectiveLayer out;
+    out.radius = layer_radius(field);
+    const auto& r = out.radius;
+    out.bound_e = 1;
+    out.bound_n = 1;
+    for (int a = 0; a < 3; ++a) out.bound_n *= 2 * r[a] + 1;
+    // An E point on an a-edge is trapped in (2 r_b) x (2 r_c) cells around the edge; report the
+    // worst axis.
+    for (int a = 0; a < 3; ++a)
+        out.bound_e = std::max(out.bound_e, 4 * r[(a + 1) % 3] * r[(a + 2) % 3]);
+
+    openvdb::MaskGrid mask;
+    auto acc = mask.getAccessor();
+    for (auto it = crossed_cells.cbeginValueOn(); it; ++it) {
+        const Coord c = it.getCoord();
+        for (int z = c.z() - r[2]; z <= c.z() + 1 + r[2]; ++z)
+            for (int y = c.y() - r[1]; y <= c.y() + 1 + r[1]; ++y)
+                for (int x = c.x() - r[0]; x <= c.x() + 1 + r[0]; ++x) acc.setValueOn(Coord(x, y, z));
+    }
+    out.points.reserve(mask.activeVoxelCount());
+    for (auto it = mask.cbeginValueOn(); it; ++it) out.points.push_back(it.getCoord());
+    return out;
+}
+
+} // namespace isodel::octree

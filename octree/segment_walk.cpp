@@ -1,0 +1,142 @@
+#include "octree/segment_walk.h"
+
+#include "octree/cell_interpolant.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isodel::octree {
+namespace {
+
+Coord cell_of(const Vec3d& p)
+{
+    return Coord(int(std::floor(p[0])), int(std::floor(p[1])), int(std::floor(p[2])));
+}
+
+/// Real roots of q(t) = c0 + c1 t + c2 t^2 in (lo, hi), sorted.
+int quadratic_roots_in(double c0, double c1, double c2, double lo, double hi, double out[2])
+{
+    int n = 0;
+    double r[2];
+    const double scale = std::max({std::abs(c0), std::abs(c1), std::abs(c2)});
+    if (scale == 0) return 0;
+    if (std::abs(c2) <= 1e-14 * scale) {
+        if (c1 != 0) r[n++] = -c0 / c1;
+    } else {
+        const double disc = c1 * c1 - 4 * c2 * c0;
+        if (disc >= 0) {
+            // Numerically stable form (no cancellation).
+            const double s = std::sqrt(disc);
+            const double qq = -0.5 * (c1 + (c1 >= 0 ? s : -s));
+            if (qq != 0) {
+                r[n++] = qq / c2;
+                r[n++] = c0 / qq;
+            } else {
+                r[n++] = 0;
+            }
+        }
+    }
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+        if (r[i] > lo && r[i] < hi) out[m++] = r[i];
+    if (m == 2 && out[0] > out[1]) std::swap(out[0], out[1]);
+    return m;
+}
+
+inline bool inside(double v) { return v >= 0; }
+
+/// Bisection of a monotone cubic piece with a sign change on [lo, hi].
+double bisect(const Cubic& q, double lo, double hi, bool lo_inside)
+{
+    for (int it = 0; it < 100 && hi - lo > 0; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        if (inside(q(mid)) == lo_inside) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+} // namespace
+
+double phi_at(const SampleField::Reader& reader, const Vec3d& p)
+{
+    const Coord c = cell_of(p);
+    double corner[8];
+    reader.cell_corners(c, corner);
+    const Trilinear f = Trilinear::from_corners(corner);
+    return f(p[0] - c[0], p[1] - c[1], p[2] - c[2]);
+}
+
+SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3d& a,
+                                   const Vec3d& b, int max_cells)
+{
+    SegmentCrossings out;
+    const Vec3d d = b - a;
+    // Cell boundary parameters along each axis (3D DDA).
+    Coord cell = cell_of(a);
+    const Coord last = cell_of(b);
+    int step[3];
+    double t_next[3], t_delta[3];
+    for (int k = 0; k < 3; ++k) {
+        if (d[k] > 0) {
+            step[k] = 1;
+            t_next[k] = (cell[k] + 1 - a[k]) / d[k];
+            t_delta[k] = 1.0 / d[k];
+        } else if (d[k] < 0) {
+            step[k] = -1;
+            t_next[k] = (cell[k] - a[k]) / d[k];
+            t_delta[k] = -1.0 / d[k];
+        } else {
+            step[k] = 0;
+            t_next[k] = t_delta[k] = INFINITY;
+        }
+    }
+    double t0 = 0.0;
+    double v0 = 0.0;
+    bool have_v0 = false;
+    for (;;) {
+        if (++out.cells_visited > max_cells) {
+            out.overflow = true;
+            out.t.clear();
+            return out;
+        }
+        const bool is_last = (cell == last);
+        int axis = 0;
+        if (t_next[1] < t_next[axis]) axis = 1;
+        if (t_next[2] < t_next[axis]) axis = 2;
+        const double t1 = is_last ? 1.0 : std::min(1.0, t_next[axis]);
+
+        double corner[8];
+        reader.cell_corners(cell, corner);
+        const Cubic q = Trilinear::from_corners(corner).along(
+            a - Vec3d(cell[0], cell[1], cell[2]), d);
+        if (!have_v0) {
+            v0 = q(t0);
+            out.inside_at_start = inside(v0);
+            have_v0 = true;
+        }
+        if (t1 > t0) {
+            // Breakpoints: t0, critical points of q in (t0, t1), t1.
+            double crit[2];
+            const int nc = quadratic_roots_in(q.c[1], 2 * q.c[2], 3 * q.c[3], t0, t1, crit);
+            double lo = t0, vlo = v0;
+            for (int i = 0; i <= nc; ++i) {
+                const double hi = (i < nc) ? crit[i] : t1;
+                const double vhi = q(hi);
+                if (inside(vlo) != inside(vhi)) out.t.push_back(bisect(q, lo, hi, inside(vlo)));
+                lo = hi;
+                vlo = vhi;
+            }
+            v0 = vlo;
+        }
+        t0 = t1;
+        if (is_last || t1 >= 1.0) break;
+        cell[axis] += step[axis];
+        t_next[axis] += t_delta[axis];
+    }
+    out.inside_at_end = inside(v0);
+    return out;
+}
+
+} // namespace isodel::octree

@@ -1,0 +1,32 @@
+#pragma once
+/// \file segment_walk.h
+/// Crossings of Sigma with a segment: walk the unit cells the segment passes through, in order,
+/// restrict the cell's trilinear interpolant to the segment (a cubic), split it at its critical
+/// points into monotone pieces and isolate each sign change by bisection (paper Section 5).
+///
+/// Robustness: the sign at every breakpoint (cell boundary, critical point) is evaluated once
+/// and reused by both neighbouring pieces, so a root on a cell face is found exactly once;
+/// phi == 0 counts as inside (+). A touching double root is not a crossing (Sigma is the limit
+/// of a transversal level set). The walk is bounded: it stops after max_cells cells and says so.
+#include "octree/sample_field.h"
+
+#include <vector>
+
+namespace isodel::octree {
+
+struct SegmentCrossings {
+    /// Parameters t in (0,1) of the crossings along a + t (b - a), increasing.
+    std::vector<double> t;
+    bool inside_at_start = false, inside_at_end = false;
+    int cells_visited = 0;
+    bool overflow = false; ///< the segment passed through more than max_cells cells
+};
+
+/// \p a, \p b in index space. Segments longer than max_cells cells report overflow and no roots.
+SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3d& a,
+                                   const Vec3d& b, int max_cells = 64);
+
+/// phi at an index-space point (trilinear in its unit cell).
+double phi_at(const SampleField::Reader& reader, const Vec3d& p);
+
+} // namespace isodel::octree

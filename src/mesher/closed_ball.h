@@ -1,0 +1,42 @@
+#pragma once
+// Internal: the closed ball property checks of DELSURFMESH step 4 (paper Section 4.1, in the
+// paper's order) and the eps criterion of step 5. Each returns the points to insert; the driver
+// inserts one class at a time, highest priority first, and checks again.
+#include "mesher/restricted_facets.h"
+
+#include <string>
+#include <vector>
+
+namespace isodel::mesher {
+
+struct Candidate {
+    Point p;
+    PointKind kind;
+    double spacing; ///< distance to the nearest vertex of the element that asked for it
+    FacetKey origin; ///< deterministic order
+};
+
+enum class Violation {
+    None,
+    VoronoiEdge,  ///< CBP_VE: a Voronoi edge meets Sigma more than once
+    GridVertex,   ///< a restricted facet has a grid vertex: its surface point is inserted so
+                  ///< that M's vertices lie on Sigma
+    VoronoiFacet, ///< CBP_VF: a Delaunay edge has other than 0 or 2 restricted facets
+    VoronoiCell,  ///< CBP_VC: a surface vertex's restricted link is not one cycle (Theorem 5)
+    Epsilon,      ///< |surface point - circumcentre| > eps (Section 4.1, mesh refinement)
+    Unbounded,    ///< a Voronoi edge of a surface facet left its cell bound
+};
+
+const char* to_string(Violation v);
+
+struct ViolationReport {
+    Violation kind = Violation::None;
+    std::vector<Candidate> candidates;
+    std::size_t restricted_facets = 0;
+    std::size_t orphans = 0; ///< surface vertices without restricted facets
+};
+
+/// Looks for violations in priority order and returns those of the first class present.
+ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps);
+
+} // namespace isodel::mesher

@@ -1,0 +1,219 @@
+// DELSURFMESH (paper Fig. 3), the data flow visible top-down:
+//   samples --edge_crossings--> E,  crossed cells --protective_layer--> G,
+//   Del(E u G) --closed ball (VE, grid vertex, VF, VC)--> --eps refinement--> Del(E u G u N)|Sigma.
+#include "mesher/closed_ball.h"
+#include "mesher/delaunay.h"
+#include "mesher/point_insertion.h"
+#include "mesher/restricted_facets.h"
+#include "mesher/surface_extraction.h"
+#include "mesher/voxel_bound.h"
+#include "octree/edge_crossings.h"
+#include "octree/protective_layer.h"
+#include "octree/sample_field.h"
+
+#include <isodel/errors.h>
+#include <isodel/mesh.h>
+
+#include <tbb/global_control.h>
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+
+namespace isodel {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::size_t peak_memory_bytes()
+{
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    return std::size_t(ru.ru_maxrss) * 1024;
+}
+
+mesher::Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
+
+} // namespace
+
+MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options,
+                           Interrupter* interrupter)
+{
+    using namespace mesher;
+    const auto t_start = Clock::now();
+    MeshResult result;
+    MeshStats& st = result.stats;
+
+    if (!(options.eps >= 0) || !(options.eps_voxels > 0) || !std::isfinite(options.eps))
+        throw InvalidInput("eps must be positive and finite");
+    std::unique_ptr<tbb::global_control> threads;
+    if (options.threads > 0)
+        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                        std::size_t(options.threads));
+
+    const Inside inside = options.inside ? *options.inside
+                                         : (grid.getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below
+                                                                                           : Inside::Above);
+    // Share the grid without copying it: the field keeps a non-owning pointer for the call.
+    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
+    const octree::SampleField field(gptr, options.isovalue, inside);
+    st.effective_isovalue = field.effective_isovalue();
+    const double eps = options.eps > 0 ? options.eps : options.eps_voxels * field.min_voxel_edge();
+    st.eps_world = eps;
+
+    // Steps 1-2: E and G.
+    auto t0 = Clock::now();
+    std::vector<std::pair<Point, VertexInfo>> initial;
+    octree::ProtectiveLayer layer;
+    std::unique_ptr<openvdb::MaskGrid> g_mask;
+    {
+        InterruptScope scope(interrupter, "points");
+        const octree::EdgeCrossings e = octree::edge_crossings(field);
+        scope.check(50);
+        layer = octree::protective_layer(field, *e.crossed_cells);
+        st.e_points = e.points.size();
+        st.g_points = layer.points.size();
+        st.bound_e = layer.bound_e;
+        st.bound_n = layer.bound_n;
+        initial.reserve(e.points.size() + layer.points.size());
+        std::uint32_t id = 0;
+        for (const auto& g : layer.points)
+            initial.push_back({to_point(field.index_to_world(g.asVec3d())), {id++, PointKind::Grid}});
+        for (const auto& p : e.points)
+            initial.push_back({to_point(field.index_to_world(p.index_pos)), {id++, PointKind::Edge}});
+        g_mask = std::make_unique<openvdb::MaskGrid>();
+        auto acc = g_mask->getAccessor();
+        for (const auto& g : layer.points) acc.setValueOn(g);
+    }
+    st.seconds["points"] = since(t0);
+    if (st.e_points == 0) throw InvalidInput("the level set is empty: no grid edge crosses the isovalue");
+
+    // Step 3: Del(E u G), spatially sorted insertion.
+    t0 = Clock::now();
+    Delaunay dt;
+    {
+        InterruptScope scope(interrupter, "delaunay");
+        dt.insert(initial.begin(), initial.end());
+        scope.check(100);
+    }
+    std::uint32_t next_id = std::uint32_t(initial.size());
+    initial.clear();
+    initial.shrink_to_fit();
+    st.seconds["delaunay"] = since(t0);
+
+    // Theorem 2, measured: cells met by the Voronoi cells of E points.
+    auto measure = [&](Vertex_handle v, int& max_cells, int bound, std::vector<Vertex_handle>& over) {
+        const int n = voronoi_cell_count(dt, v, field);
+        if (n < 0 || n > bound) over.push_back(v);
+        if (n > max_cells) max_cells = n;
+    };
+    std::vector<Vertex_handle> over_bound;
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        if (v->info().kind == PointKind::Edge) measure(v, st.max_cells_e, st.bound_e, over_bound);
+
+    // A Voronoi cell that leaves its bound is a hole in G: add the grid points of the trap block
+    // around the point's cell, never search further.
+    auto repair = [&](const std::vector<Vertex_handle>& verts) {
+        std::vector<Point> add;
+        auto acc = g_mask->getAccessor();
+        const auto& r = layer.radius;
+        for (const auto& v : verts) {
+            const auto q = field.world_to_index({v->point().x(), v->point().y(), v->point().z()});
+            const openvdb::Coord c(int(std::floor(q[0])), int(std::floor(q[1])), int(std::floor(q[2])));
+            for (int z = c.z() - r[2]; z <= c.z() + 1 + r[2]; ++z)
+                for (int y = c.y() - r[1]; y <= c.y() + 1 + r[1]; ++y)
+                    for (int x = c.x() - r[0]; x <= c.x() + 1 + r[0]; ++x) {
+                        const openvdb::Coord g(x, y, z);
+                        if (acc.isValueOn(g)) continue;
+                        acc.setValueOn(g);
+                        add.push_back(to_point(field.index_to_world(g.asVec3d())));
+                    }
+        }
+        return add;
+    };
+
+    // Steps 4-5: closed ball property, then eps refinement, one violation class per round.
+    t0 = Clock::now();
+    const std::size_t max_points =
+        options.max_points ? options.max_points : 20 * st.e_points + 100000;
+    const int max_cells_walk = 4 * st.bound_n + 16;
+    const double hash_cell = 0.25 * field.min_voxel_edge();
+    FacetCache cache;
+    double t_topology = 0, t_refine = 0;
+    {
+        InterruptScope scope(interrupter, "closed_ball");
+        for (;;) {
+            if (!over_bound.empty()) {
+                const auto add = repair(over_bound);
+                st.bound_repairs += add.size();
+                for (const Point& p : add) {
+                    const Vertex_handle v = dt.insert(p);
+                    v->info() = VertexInfo{next_id++, PointKind::Grid};
+                    cache.invalidate_around(dt, v);
+                }
+                over_bound.clear();
+            }
+            const auto tr = Clock::now();
+            if (++st.rounds > options.max_rounds) {
+                std::ostringstream os;
+                os << "refinement stopped by the round bound (--max-rounds " << options.max_rounds
+                   << "): guarantees not certified";
+                throw GuaranteeViolated(os.str());
+            }
+            cache.update(dt, field, max_cells_walk);
+            const ViolationReport rep = find_violations(dt, cache, eps);
+            if (std::getenv("ISODEL_TRACE"))
+                std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
+                             to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
+                             cache.computed_last_update());
+            if (rep.kind == Violation::None) break;
+            if (rep.kind == Violation::Unbounded) {
+                // Surface facets whose Voronoi edge left the bound: repair around their vertices.
+                for (const auto& e : cache.active())
+                    if (e.record->overflow)
+                        for (const auto& v : facet_vertices(e.facet))
+                            if (v->info().on_surface()) over_bound.push_back(v);
+                if (st.bound_repairs > 10 * st.g_points + 1000)
+                    throw GuaranteeViolated("voxel bound repairs did not converge");
+                continue;
+            }
+            const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
+            for (const auto& v : ins.inserted) {
+                if (rep.kind == Violation::Epsilon) ++st.n_geometry;
+                else ++st.n_topology;
+                measure(v, st.max_cells_n, st.bound_n, over_bound);
+            }
+            (rep.kind == Violation::Epsilon ? t_refine : t_topology) += since(tr);
+            if (st.n_geometry + st.n_topology > max_points) {
+                std::ostringstream os;
+                os << "refinement stopped by the point bound (" << max_points
+                   << " inserted points) while fixing " << to_string(rep.kind) << ": guarantees not certified";
+                throw GuaranteeViolated(os.str());
+            }
+            if (ins.inserted.empty()) {
+                std::ostringstream os;
+                os << "no progress fixing " << to_string(rep.kind) << " (" << rep.candidates.size()
+                   << " violations, all candidates already vertices)";
+                throw GuaranteeViolated(os.str());
+            }
+            scope.check();
+        }
+    }
+    st.seconds["closed_ball"] = t_topology;
+    st.seconds["refine"] = t_refine;
+
+    result.surface = extract_surface(dt, cache);
+    st.vertices = result.surface.vertices.size();
+    st.triangles = result.surface.triangles.size();
+    st.components = surface_topology(result.surface);
+    st.seconds["total"] = since(t_start);
+    st.peak_memory_bytes = peak_memory_bytes();
+    return result;
+}
+
+} // namespace isodel

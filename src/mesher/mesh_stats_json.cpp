@@ -1,0 +1,36 @@
+#include <isodel/mesh.h>
+
+#include <sstream>
+
+namespace isodel {
+
+std::string to_json(const MeshStats& s)
+{
+    std::ostringstream o;
+    o.precision(17);
+    o << "{\n  \"counts\": {\"E\": " << s.e_points << ", \"G\": " << s.g_points
+      << ", \"N_topology\": " << s.n_topology << ", \"N_geometry\": " << s.n_geometry
+      << ", \"snapped\": " << s.snapped << ", \"vertices\": " << s.vertices
+      << ", \"triangles\": " << s.triangles << ", \"rounds\": " << s.rounds << "},\n";
+    o << "  \"effective_isovalue\": " << s.effective_isovalue << ",\n  \"eps_world\": " << s.eps_world
+      << ",\n  \"seconds\": {";
+    bool first = true;
+    for (const auto& [k, v] : s.seconds) {
+        o << (first ? "" : ", ") << '"' << k << "\": " << v;
+        first = false;
+    }
+    o << "},\n  \"peak_memory_bytes\": " << s.peak_memory_bytes << ",\n";
+    o << "  \"voxel_bound\": {\"max_cells_E\": " << s.max_cells_e << ", \"bound_E\": " << s.bound_e
+      << ", \"max_cells_N\": " << s.max_cells_n << ", \"bound_N\": " << s.bound_n
+      << ", \"repairs\": " << s.bound_repairs << "},\n";
+    o << "  \"topology\": {\"components\": " << s.components.size() << ", \"per_component\": [";
+    for (std::size_t i = 0; i < s.components.size(); ++i) {
+        const auto& c = s.components[i];
+        o << (i ? ", " : "") << "{\"euler\": " << c.euler << ", \"genus\": " << c.genus
+          << ", \"triangles\": " << c.triangles << "}";
+    }
+    o << "]}\n}\n";
+    return o.str();
+}
+
+} // namespace isodel

@@ -1,0 +1,100 @@
+#include "mesher/restricted_facets.h"
+
+#include "mesher/circumcenter.h"
+#include "octree/segment_walk.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace isodel::mesher {
+namespace {
+
+openvdb::Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
+Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
+
+} // namespace
+
+FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
+                                 const octree::SampleField::Reader& reader, int max_cells)
+{
+    FacetRecord rec;
+    const Cell_handle c0 = f.first;
+    const Cell_handle c1 = c0->neighbor(f.second);
+    if (dt.is_infinite(c0) || dt.is_infinite(c1)) {
+        rec.overflow = true;
+        return rec;
+    }
+    const Point a = robust_circumcenter(c0);
+    const Point b = robust_circumcenter(c1);
+    const auto& field = reader.field();
+    const auto ia = field.world_to_index(to_vdb(a));
+    const auto ib = field.world_to_index(to_vdb(b));
+    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells);
+    if (sc.overflow) {
+        rec.overflow = true;
+        return rec;
+    }
+    rec.crossings = std::uint16_t(std::min<std::size_t>(sc.t.size(), 65535));
+    if (sc.t.empty()) return rec;
+    const auto vs = facet_vertices(f);
+    const Point cc = CGAL::circumcenter(vs[0]->point(), vs[1]->point(), vs[2]->point());
+    double best = -1;
+    for (double t : sc.t) {
+        const Point p = to_point(field.index_to_world(ia + t * (ib - ia)));
+        const double d = std::sqrt(CGAL::squared_distance(p, cc));
+        if (d > best) {
+            best = d;
+            rec.surface_point = p;
+        }
+    }
+    rec.distance = best;
+    rec.outward = sc.inside_at_start ? (b - a) : (a - b);
+    return rec;
+}
+
+void FacetCache::invalidate_around(const Delaunay& dt, Vertex_handle v)
+{
+    std::vector<Cell_handle> cells;
+    dt.incident_cells(v, std::back_inserter(cells));
+    for (const Cell_handle& c : cells) map_.erase(facet_key(Facet(c, c->index(v))));
+}
+
+void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, int max_cells)
+{
+    std::unordered_map<FacetKey, FacetRecord, FacetKeyHash> next;
+    next.reserve(map_.size() + map_.size() / 4 + 16);
+    std::vector<std::pair<Facet, FacetKey>> todo, all;
+    for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) {
+        const auto vs = facet_vertices(*it);
+        if (!vs[0]->info().on_surface() && !vs[1]->info().on_surface() &&
+            !vs[2]->info().on_surface())
+            continue;
+        const FacetKey key = facet_key(*it);
+        auto found = map_.find(key);
+        if (found != map_.end()) next.emplace(key, found->second);
+        else todo.emplace_back(*it, key);
+        all.emplace_back(*it, key);
+    }
+    computed_ = todo.size();
+    std::vector<FacetRecord> fresh(todo.size());
+    tbb::enumerable_thread_specific<octree::SampleField::Reader> readers(
+        [&] { return octree::SampleField::Reader(field); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          auto& reader = readers.local();
+                          for (std::size_t i = r.begin(); i != r.end(); ++i)
+                              fresh[i] = compute_facet_record(dt, todo[i].first, reader, max_cells);
+                      });
+    for (std::size_t i = 0; i < todo.size(); ++i) next.emplace(todo[i].second, fresh[i]);
+    map_.swap(next);
+    active_.clear();
+    for (const auto& [facet, key] : all) {
+        const FacetRecord& rec = map_.at(key);
+        if (rec.crossings > 0 || rec.overflow) active_.push_back({facet, key, &rec});
+    }
+}
+
+} // namespace isodel::mesher
