@@ -57,6 +57,32 @@ double bisect(const Cubic& q, double lo, double hi, bool lo_inside)
     return 0.5 * (lo + hi);
 }
 
+/// Is there a grid plane between index points p and q, or within tol of either?
+bool near_grid_plane(const Vec3d& p, const Vec3d& q, double tol)
+{
+    for (int k = 0; k < 3; ++k) {
+        if (std::floor(p[k]) != std::floor(q[k])) return true;
+        if (std::abs(p[k] - std::round(p[k])) < tol || std::abs(q[k] - std::round(q[k])) < tol) return true;
+    }
+    return false;
+}
+
+/// Drops consecutive crossing pairs that are the two sheets of a knife-edge crease (see header).
+void cancel_crease_pairs(std::vector<double>& t, const Vec3d& a, const Vec3d& d, double tol)
+{
+    const double len = d.length();
+    std::vector<double> kept;
+    for (double ti : t) {
+        if (!kept.empty() && (ti - kept.back()) * len < tol &&
+            near_grid_plane(a + kept.back() * d, a + ti * d, tol)) {
+            kept.pop_back();
+            continue;
+        }
+        kept.push_back(ti);
+    }
+    t.swap(kept);
+}
+
 } // namespace
 
 double phi_at(const SampleField::Reader& reader, const Vec3d& p)
@@ -69,7 +95,7 @@ double phi_at(const SampleField::Reader& reader, const Vec3d& p)
 }
 
 SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3d& a,
-                                   const Vec3d& b, int max_cells)
+                                   const Vec3d& b, int max_cells, double crease_tolerance)
 {
     SegmentCrossings out;
     const Vec3d d = b - a;
@@ -136,6 +162,7 @@ SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3
         t_next[axis] += t_delta[axis];
     }
     out.inside_at_end = inside(v0);
+    if (crease_tolerance > 0 && out.t.size() > 1) cancel_crease_pairs(out.t, a, d, crease_tolerance);
     return out;
 }
 

@@ -41,6 +41,7 @@ const char* to_string(Violation v)
 {
     switch (v) {
     case Violation::None: return "none";
+    case Violation::GridCell: return "grid-cell";
     case Violation::VoronoiEdge: return "CBP_VE";
     case Violation::GridVertex: return "grid-vertex";
     case Violation::VoronoiFacet: return "CBP_VF";

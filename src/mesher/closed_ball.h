@@ -18,6 +18,7 @@ struct Candidate {
 
 enum class Violation {
     None,
+    GridCell,     ///< Theorem 3 fails: Sigma enters the Voronoi cell of a grid point
     VoronoiEdge,  ///< CBP_VE: a Voronoi edge meets Sigma more than once
     GridVertex,   ///< a restricted facet has a grid vertex: its surface point is inserted so
                   ///< that M's vertices lie on Sigma

@@ -3,6 +3,7 @@
 //   Del(E u G) --closed ball (VE, grid vertex, VF, VC)--> --eps refinement--> Del(E u G u N)|Sigma.
 #include "mesher/closed_ball.h"
 #include "mesher/delaunay.h"
+#include "mesher/grid_cell_check.h"
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
 #include "mesher/surface_extraction.h"
@@ -115,6 +116,10 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     std::vector<Vertex_handle> over_bound;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
         if (v->info().kind == PointKind::Edge) measure(v, st.max_cells_e, st.bound_e, over_bound);
+    // Grid points whose Voronoi cell may meet Sigma (Theorem 3, checked): all of G at first.
+    std::vector<Vertex_handle> grid_pending;
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        if (v->info().kind == PointKind::Grid) grid_pending.push_back(v);
 
     // A Voronoi cell that leaves its bound is a hole in G: add the grid points of the trap block
     // around the point's cell, never search further.
@@ -155,6 +160,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                     const Vertex_handle v = dt.insert(p);
                     v->info() = VertexInfo{next_id++, PointKind::Grid};
                     cache.invalidate_around(dt, v);
+                    grid_pending.push_back(v);
                 }
                 over_bound.clear();
             }
@@ -166,7 +172,14 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                 throw GuaranteeViolated(os.str());
             }
             cache.update(dt, field, max_cells_walk);
-            const ViolationReport rep = find_violations(dt, cache, eps);
+            ViolationReport rep = find_violations(dt, cache, eps);
+            if (rep.kind != Violation::Unbounded) {
+                auto grid = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
+                if (!grid.empty()) {
+                    rep.kind = Violation::GridCell;
+                    rep.candidates = std::move(grid);
+                }
+            }
             if (std::getenv("ISODEL_TRACE"))
                 std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,

@@ -15,6 +15,10 @@ namespace {
 openvdb::Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
 Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
+/// Knife-edge crease pairs closer than this (index units) cancel (octree/segment_walk.h); far
+/// below any useful eps (the trimmed tip moves Sigma by less than 0.001 voxel).
+constexpr double kCreaseTolerance = 1e-3;
+
 } // namespace
 
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
@@ -32,14 +36,14 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
     const auto& field = reader.field();
     const auto ia = field.world_to_index(to_vdb(a));
     const auto ib = field.world_to_index(to_vdb(b));
-    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells);
+    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells, kCreaseTolerance);
     if (sc.overflow) {
         rec.overflow = true;
         return rec;
     }
     rec.crossings = std::uint16_t(std::min<std::size_t>(sc.t.size(), 65535));
-    if (sc.t.empty()) return rec;
     const auto vs = facet_vertices(f);
+    if (sc.t.empty()) return rec;
     const Point cc = CGAL::circumcenter(vs[0]->point(), vs[1]->point(), vs[2]->point());
     double best = -1;
     for (double t : sc.t) {
