@@ -47,6 +47,7 @@ const char* to_string(Violation v)
     case Violation::VoronoiFacet: return "CBP_VF";
     case Violation::VoronoiCell: return "CBP_VC";
     case Violation::Epsilon: return "epsilon";
+    case Violation::Hausdorff: return "hausdorff";
     case Violation::Unbounded: return "voxel-bound";
     }
     return "?";

@@ -25,6 +25,7 @@ enum class Violation {
     VoronoiFacet, ///< CBP_VF: a Delaunay edge has other than 0 or 2 restricted facets
     VoronoiCell,  ///< CBP_VC: a surface vertex's restricted link is not one cycle (Theorem 5)
     Epsilon,      ///< |surface point - circumcentre| > eps (Section 4.1, mesh refinement)
+    Hausdorff,    ///< a one-sided distance between a facet and Sigma exceeds eps (measured)
     Unbounded,    ///< a Voronoi edge of a surface facet left its cell bound
 };
 

@@ -4,6 +4,7 @@
 #include "mesher/closed_ball.h"
 #include "mesher/delaunay.h"
 #include "mesher/grid_cell_check.h"
+#include "mesher/hausdorff_refinement.h"
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
 #include "mesher/surface_extraction.h"
@@ -72,11 +73,13 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     std::vector<std::pair<Point, VertexInfo>> initial;
     octree::ProtectiveLayer layer;
     std::unique_ptr<openvdb::MaskGrid> g_mask;
+    std::vector<openvdb::Coord> crossed_cells;
     {
         InterruptScope scope(interrupter, "points");
         const octree::EdgeCrossings e = octree::edge_crossings(field);
         scope.check(50);
         layer = octree::protective_layer(field, *e.crossed_cells);
+        for (auto it = e.crossed_cells->cbeginValueOn(); it; ++it) crossed_cells.push_back(it.getCoord());
         st.e_points = e.points.size();
         st.g_points = layer.points.size();
         st.bound_e = layer.bound_e;
@@ -149,6 +152,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     const int max_cells_walk = 4 * st.bound_n + 16;
     const double hash_cell = 0.25 * field.min_voxel_edge();
     FacetCache cache;
+    HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells));
     double t_topology = 0, t_refine = 0;
     {
         InterruptScope scope(interrupter, "closed_ball");
@@ -184,6 +188,14 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                 std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
                              cache.computed_last_update());
+            if (rep.kind == Violation::None) {
+                std::vector<const FacetCache::Entry*> restricted;
+                for (const auto& e : cache.active())
+                    if (e.record->crossings == 1) restricted.push_back(&e);
+                rep.candidates = hausdorff.violations(restricted);
+                if (rep.candidates.empty()) rep.candidates = hausdorff.crease_violations(restricted);
+                if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
+            }
             if (rep.kind == Violation::None) break;
             if (rep.kind == Violation::Unbounded) {
                 // Surface facets whose Voronoi edge left the bound: repair around their vertices.
@@ -197,11 +209,11 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
             }
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
             for (const auto& v : ins.inserted) {
-                if (rep.kind == Violation::Epsilon) ++st.n_geometry;
+                if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff) ++st.n_geometry;
                 else ++st.n_topology;
                 measure(v, st.max_cells_n, st.bound_n, over_bound);
             }
-            (rep.kind == Violation::Epsilon ? t_refine : t_topology) += since(tr);
+            (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff ? t_refine : t_topology) += since(tr);
             if (st.n_geometry + st.n_topology > max_points) {
                 std::ostringstream os;
                 os << "refinement stopped by the point bound (" << max_points

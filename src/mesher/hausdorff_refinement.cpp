@@ -1,0 +1,226 @@
+#include "mesher/hausdorff_refinement.h"
+
+#include "octree/cell_interpolant.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace isodel::mesher {
+namespace {
+
+using Vec3d = openvdb::Vec3d;
+
+Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
+
+/// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3d closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c)
+{
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+    const Vec3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double denom = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+/// Newton projection of a world point onto Sigma along the world gradient of phi. Returns false
+/// when it does not converge (flat phi): the caller then has no bound from it.
+bool project(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,
+             const openvdb::math::Mat3d& to_index, double step_cap, const Vec3d& w0, Vec3d& out)
+{
+    const auto& field = reader.field();
+    Vec3d x = field.world_to_index(w0);
+    for (int it = 0; it < 30; ++it) {
+        const openvdb::Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
+        double corner[8];
+        reader.cell_corners(c, corner);
+        const auto f = octree::Trilinear::from_corners(corner);
+        const Vec3d l = x - c.asVec3d();
+        const double phi = f(l[0], l[1], l[2]);
+        const Vec3d gw = to_index.transpose() * f.gradient(l[0], l[1], l[2]); // world gradient
+        const double g2 = gw.lengthSqr();
+        if (!(g2 > 0)) return false;
+        Vec3d dw = gw * (-phi / g2);
+        const double len = dw.length();
+        if (len > step_cap) dw *= step_cap / len;
+        x += to_index * dw;
+        if (len < 1e-10 * step_cap) {
+            out = field.index_to_world(x);
+            return true;
+        }
+    }
+    return false;
+}
+
+struct Tri {
+    Vec3d a, b, c;
+};
+
+} // namespace
+
+HausdorffRefinement::HausdorffRefinement(const octree::SampleField& field, double eps,
+                                         std::vector<openvdb::Coord> crossed_cells)
+    : field_(field), eps_(eps), crossed_cells_(std::move(crossed_cells))
+{
+    const Vec3d o = field.index_to_world(Vec3d(0.0));
+    for (int k = 0; k < 3; ++k) {
+        Vec3d e(0.0);
+        e[k] = 1;
+        const Vec3d col = field.index_to_world(e) - o;
+        for (int r = 0; r < 3; ++r) index_to_world_(r, k) = col[r];
+    }
+    world_to_index_ = index_to_world_.inverse();
+}
+
+std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const FacetCache::Entry*>& restricted)
+{
+    // Triangles around each restricted edge, for the Sigma -> M check of p.
+    std::vector<const FacetCache::Entry*> todo;
+    for (const auto* e : restricted)
+        if (!passed_.count(e->key)) todo.push_back(e);
+    if (todo.empty()) return {};
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Tri>> by_edge;
+    for (const auto* e : restricted) {
+        const auto vs = facet_vertices(e->facet);
+        const Tri t{to_vdb(vs[0]->point()), to_vdb(vs[1]->point()), to_vdb(vs[2]->point())};
+        const auto& k = e->key.v;
+        by_edge[{k[0], k[1]}].push_back(t);
+        by_edge[{k[0], k[2]}].push_back(t);
+        by_edge[{k[1], k[2]}].push_back(t);
+    }
+    const double limit = 0.7 * eps_;
+    const double step_cap = 0.5 * field_.min_voxel_edge();
+    std::vector<char> bad(todo.size(), 0);
+    tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
+        auto& reader = readers.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const auto* e = todo[i];
+            const auto vs = facet_vertices(e->facet);
+            const Vec3d a = to_vdb(vs[0]->point()), b = to_vdb(vs[1]->point()), c = to_vdb(vs[2]->point());
+            const Vec3d p = to_vdb(e->record->surface_point);
+            // Sigma -> M at p.
+            double dp = (closest_on_triangle(p, a, b, c) - p).length();
+            const auto& k = e->key.v;
+            for (const auto& edge : {std::make_pair(k[0], k[1]), std::make_pair(k[0], k[2]), std::make_pair(k[1], k[2])})
+                for (const Tri& t : by_edge.at(edge)) dp = std::min(dp, (closest_on_triangle(p, t.a, t.b, t.c) - p).length());
+            if (dp > limit) {
+                bad[i] = 1;
+                continue;
+            }
+            // M -> Sigma on a barycentric grid.
+            const double longest = std::max({(b - a).length(), (c - b).length(), (a - c).length()});
+            const int n = std::clamp(int(std::ceil(longest / (0.25 * eps_))), 1, 24);
+            for (int u = 0; u <= n && !bad[i]; ++u)
+                for (int v = 0; u + v <= n; ++v) {
+                    if ((u == 0 && v == 0) || (u == n && v == 0) || (u == 0 && v == n)) continue; // on Sigma
+                    const Vec3d s = a + (b - a) * (double(u) / n) + (c - a) * (double(v) / n);
+                    Vec3d q;
+                    double d = (s - p).length(); // p is on Sigma: always an upper bound
+                    if (d > limit && project(reader, index_to_world_, world_to_index_, step_cap, s, q))
+                        d = std::min(d, (q - s).length());
+                    if (d > limit) {
+                        bad[i] = 1;
+                        break;
+                    }
+                }
+        }
+    });
+    std::vector<Candidate> out;
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+        if (!bad[i]) {
+            passed_.insert(todo[i]->key);
+            continue;
+        }
+        const auto* e = todo[i];
+        double spacing = INFINITY;
+        for (const auto& v : facet_vertices(e->facet))
+            spacing = std::min(spacing, std::sqrt(CGAL::squared_distance(v->point(), e->record->surface_point)));
+        out.push_back({e->record->surface_point, PointKind::Geometry, spacing, e->key});
+    }
+    return out;
+}
+
+std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<const FacetCache::Entry*>& restricted)
+{
+    // Distances only (no combinatorial decision): a plain double kernel is enough here.
+    using KD = CGAL::Simple_cartesian<double>;
+    using Tree = CGAL::AABB_tree<CGAL::AABB_traits<KD, CGAL::AABB_triangle_primitive<KD, std::vector<KD::Triangle_3>::const_iterator>>>;
+    std::vector<KD::Triangle_3> tris;
+    tris.reserve(restricted.size());
+    for (const auto* e : restricted) {
+        const auto vs = facet_vertices(e->facet);
+        auto kp = [](const Point& p) { return KD::Point_3(p.x(), p.y(), p.z()); };
+        tris.emplace_back(kp(vs[0]->point()), kp(vs[1]->point()), kp(vs[2]->point()));
+    }
+    if (tris.empty()) return {};
+    Tree tree(tris.cbegin(), tris.cend());
+    tree.accelerate_distance_queries();
+    const double limit = 0.7 * eps_;
+    // Lines every eps/2 (world) on each face; R lines per unit of index.
+    const int R = std::clamp(int(std::ceil(2.0 * field_.min_voxel_edge() / eps_)), 2, 64);
+    std::vector<std::vector<Candidate>> found(crossed_cells_.size());
+    tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, crossed_cells_.size(), 16), [&](const auto& r) {
+        auto& reader = readers.local();
+        for (std::size_t ci = r.begin(); ci != r.end(); ++ci) {
+            const openvdb::Coord c = crossed_cells_[ci];
+            double corner[8];
+            reader.cell_corners(c, corner);
+            const auto f = octree::Trilinear::from_corners(corner);
+            double worst = limit;
+            Vec3d worst_at;
+            // Faces x = 0, 1; y = 0, 1; z = 0, 1 of the cell; on each, lines along the two other axes.
+            for (int axis = 0; axis < 3; ++axis)
+                for (int side = 0; side < 2; ++side)
+                    for (int dir = 0; dir < 3; ++dir) {
+                        if (dir == axis) continue;
+                        const int other = 3 - axis - dir;
+                        for (int i = 1; i < R; ++i) {
+                            Vec3d p0(0.0);
+                            p0[axis] = side;
+                            p0[other] = double(i) / R;
+                            Vec3d p1 = p0;
+                            p1[dir] = 1;
+                            const double v0 = f(p0[0], p0[1], p0[2]), v1 = f(p1[0], p1[1], p1[2]);
+                            if ((v0 >= 0) == (v1 >= 0)) continue;
+                            const Vec3d l = p0 + (p1 - p0) * (v0 / (v0 - v1)); // F is linear here
+                            const Vec3d w = field_.index_to_world(c.asVec3d() + l);
+                            const double d = std::sqrt(tree.squared_distance(KD::Point_3(w[0], w[1], w[2])));
+                            if (d > worst) {
+                                worst = d;
+                                worst_at = w;
+                            }
+                        }
+                    }
+            if (worst > limit)
+                found[ci].push_back({Point(worst_at[0], worst_at[1], worst_at[2]), PointKind::Geometry, worst,
+                                     FacetKey{{std::uint32_t(ci), 0xffffffffu, 0}}});
+        }
+    });
+    std::vector<Candidate> out;
+    for (auto& v : found) out.insert(out.end(), v.begin(), v.end());
+    return out;
+}
+
+} // namespace isodel::mesher
