@@ -8,6 +8,7 @@
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
 #include "mesher/surface_extraction.h"
+#include "mesher/thin_tubes.h"
 #include "mesher/voxel_bound.h"
 #include "octree/edge_crossings.h"
 #include "octree/protective_layer.h"
@@ -90,6 +91,9 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
             initial.push_back({to_point(field.index_to_world(g.asVec3d())), {id++, PointKind::Grid}});
         for (const auto& p : e.points)
             initial.push_back({to_point(field.index_to_world(p.index_pos)), {id++, PointKind::Edge}});
+        const auto tubes = thin_tube_points(field, crossed_cells);
+        st.n_topology += tubes.size();
+        for (const auto& p : tubes) initial.push_back({to_point(field.index_to_world(p)), {id++, PointKind::Topology}});
         g_mask = std::make_unique<openvdb::MaskGrid>();
         auto acc = g_mask->getAccessor();
         for (const auto& g : layer.points) acc.setValueOn(g);
@@ -119,6 +123,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     std::vector<Vertex_handle> over_bound;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
         if (v->info().kind == PointKind::Edge) measure(v, st.max_cells_e, st.bound_e, over_bound);
+        else if (v->info().kind == PointKind::Topology) measure(v, st.max_cells_n, st.bound_n, over_bound);
     // Grid points whose Voronoi cell may meet Sigma (Theorem 3, checked): all of G at first.
     std::vector<Vertex_handle> grid_pending;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
@@ -161,9 +166,9 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                 const auto add = repair(over_bound);
                 st.bound_repairs += add.size();
                 for (const Point& p : add) {
-                    const Vertex_handle v = dt.insert(p);
-                    v->info() = VertexInfo{next_id++, PointKind::Grid};
-                    cache.invalidate_around(dt, v);
+                    const Vertex_handle v = cache.insert(dt, p, VertexInfo{next_id, PointKind::Grid});
+                    if (v == Vertex_handle()) continue;
+                    ++next_id;
                     grid_pending.push_back(v);
                 }
                 over_bound.clear();

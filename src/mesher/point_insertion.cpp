@@ -49,14 +49,10 @@ InsertionResult insert_candidates(Delaunay& dt, FacetCache& cache, std::vector<C
                         }
                 }
         if (close) continue;
-        Delaunay::Locate_type lt;
-        int li, lj;
-        const Cell_handle loc = dt.locate(c.p, lt, li, lj, hint);
-        if (lt == Delaunay::VERTEX) continue; // already a vertex
-        const Vertex_handle v = dt.insert(c.p, lt, loc, li, lj);
-        v->info() = VertexInfo{next_id++, c.kind};
+        const Vertex_handle v = cache.insert(dt, c.p, VertexInfo{next_id, c.kind}, hint);
+        if (v == Vertex_handle()) continue; // already a vertex
+        ++next_id;
         hint = v->cell();
-        cache.invalidate_around(dt, v);
         out.inserted.push_back(v);
         accepted[k].push_back(c.p);
     }

@@ -59,29 +59,48 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
     return rec;
 }
 
-void FacetCache::invalidate_around(const Delaunay& dt, Vertex_handle v)
+Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, Cell_handle hint)
 {
-    std::vector<Cell_handle> cells;
-    dt.incident_cells(v, std::back_inserter(cells));
-    for (const Cell_handle& c : cells) map_.erase(facet_key(Facet(c, c->index(v))));
+    Delaunay::Locate_type lt;
+    int li, lj;
+    const Cell_handle loc = dt.locate(p, lt, li, lj, hint);
+    if (lt == Delaunay::VERTEX) return Vertex_handle();
+    std::vector<Cell_handle> conflicts;
+    dt.find_conflicts(p, loc, CGAL::Emptyset_iterator(), std::back_inserter(conflicts));
+    for (const Cell_handle& c : conflicts)
+        for (int i = 0; i < 4; ++i)
+            if (!dt.is_infinite(c, i)) map_.erase(facet_key(Facet(c, i)));
+    const Vertex_handle v = dt.insert(p, lt, loc, li, lj);
+    v->info() = info;
+    inserted_.push_back(v);
+    return v;
 }
 
 void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, int max_cells)
 {
-    std::unordered_map<FacetKey, FacetRecord, FacetKeyHash> next;
-    next.reserve(map_.size() + map_.size() / 4 + 16);
-    std::vector<std::pair<Facet, FacetKey>> todo, all;
-    for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) {
-        const auto vs = facet_vertices(*it);
-        if (!vs[0]->info().on_surface() && !vs[1]->info().on_surface() &&
-            !vs[2]->info().on_surface())
-            continue;
-        const FacetKey key = facet_key(*it);
-        auto found = map_.find(key);
-        if (found != map_.end()) next.emplace(key, found->second);
-        else todo.emplace_back(*it, key);
-        all.emplace_back(*it, key);
+    std::vector<std::pair<Facet, FacetKey>> todo;
+    auto consider = [&](const Facet& f) {
+        const auto vs = facet_vertices(f);
+        if (!vs[0]->info().on_surface() && !vs[1]->info().on_surface() && !vs[2]->info().on_surface()) return;
+        const FacetKey key = facet_key(f);
+        if (map_.count(key)) return;
+        map_.emplace(key, Stored{f, FacetRecord()}); // placeholder: dedupes within this update
+        todo.emplace_back(f, key);
+    };
+    if (!scanned_) {
+        for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) consider(*it);
+        scanned_ = true;
+    } else {
+        std::vector<Cell_handle> cells;
+        for (const Vertex_handle& v : inserted_) {
+            cells.clear();
+            dt.incident_cells(v, std::back_inserter(cells));
+            for (const Cell_handle& c : cells)
+                for (int i = 0; i < 4; ++i)
+                    if (!dt.is_infinite(c, i)) consider(Facet(c, i));
+        }
     }
+    inserted_.clear();
     computed_ = todo.size();
     std::vector<FacetRecord> fresh(todo.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers(
@@ -92,13 +111,11 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                           for (std::size_t i = r.begin(); i != r.end(); ++i)
                               fresh[i] = compute_facet_record(dt, todo[i].first, reader, max_cells);
                       });
-    for (std::size_t i = 0; i < todo.size(); ++i) next.emplace(todo[i].second, fresh[i]);
-    map_.swap(next);
+    for (std::size_t i = 0; i < todo.size(); ++i) map_.at(todo[i].second).record = fresh[i];
     active_.clear();
-    for (const auto& [facet, key] : all) {
-        const FacetRecord& rec = map_.at(key);
-        if (rec.crossings > 0 || rec.overflow) active_.push_back({facet, key, &rec});
-    }
+    for (const auto& [key, stored] : map_)
+        if (stored.record.crossings > 0 || stored.record.overflow) active_.push_back({stored.facet, key, &stored.record});
+    std::sort(active_.begin(), active_.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
 }
 
 } // namespace isodel::mesher

@@ -25,29 +25,40 @@ struct FacetRecord {
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
                                  const octree::SampleField::Reader& reader, int max_cells);
 
-/// Cache of facet records keyed by vertex ids. A facet's Voronoi edge changes exactly when one
-/// of its two cells is replaced; every new cell is incident to the inserted vertex, so after an
-/// insertion of v the records to drop are those of the facets opposite v in v's new cells
-/// (facets containing v are new keys).
+/// Cache of facet records keyed by vertex ids, maintained incrementally. A facet's Voronoi edge
+/// changes exactly when one of its two cells is replaced, and every cell an insertion destroys
+/// is in the new point's conflict region: so insert() drops the records of the facets of those
+/// cells, and update() computes records only for the facets of the cells around the points
+/// inserted since the last update. All points after the initial triangulation must go through
+/// insert().
 class FacetCache {
 public:
-    /// Scans every finite facet with a surface vertex, computing missing records in parallel
-    /// (deterministic: each record depends only on the triangulation). Drops stale entries.
+    /// First call: scans every finite facet with a surface vertex. Later calls: only the facets
+    /// around the points inserted since. Records are computed in parallel; each depends only on
+    /// the triangulation, and the active list is sorted by key, so the result is deterministic.
     void update(const Delaunay& dt, const octree::SampleField& field, int max_cells);
 
-    void invalidate_around(const Delaunay& dt, Vertex_handle v);
+    /// Inserts \p p (located from \p hint) and returns its vertex, or a null handle when p is
+    /// already a vertex.
+    Vertex_handle insert(Delaunay& dt, const Point& p, VertexInfo info, Cell_handle hint = Cell_handle());
 
     struct Entry {
         Facet facet;
         FacetKey key;
         const FacetRecord* record;
     };
-    /// Facets whose Voronoi edge meets Sigma or overflowed, in scan order (deterministic).
+    /// Facets whose Voronoi edge meets Sigma or overflowed, sorted by key.
     const std::vector<Entry>& active() const { return active_; }
     std::size_t computed_last_update() const { return computed_; }
 
 private:
-    std::unordered_map<FacetKey, FacetRecord, FacetKeyHash> map_;
+    struct Stored {
+        Facet facet;
+        FacetRecord record;
+    };
+    std::unordered_map<FacetKey, Stored, FacetKeyHash> map_;
+    std::vector<Vertex_handle> inserted_;
+    bool scanned_ = false;
     std::vector<Entry> active_;
     std::size_t computed_ = 0;
 };
