@@ -62,10 +62,14 @@ inline FacetKey facet_key(const Facet& f)
     return k;
 }
 
+/// The facet's vertices in id order: every computation on a facet then rounds the same way
+/// whichever cell represents it (determinism).
 inline std::array<Vertex_handle, 3> facet_vertices(const Facet& f)
 {
-    return {f.first->vertex((f.second + 1) & 3), f.first->vertex((f.second + 2) & 3),
-            f.first->vertex((f.second + 3) & 3)};
+    std::array<Vertex_handle, 3> v{f.first->vertex((f.second + 1) & 3), f.first->vertex((f.second + 2) & 3),
+                                   f.first->vertex((f.second + 3) & 3)};
+    std::sort(v.begin(), v.end(), [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
+    return v;
 }
 
 } // namespace isodel::mesher

@@ -21,6 +21,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -163,6 +164,9 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
         InterruptScope scope(interrupter, "closed_ball");
         for (;;) {
             if (!over_bound.empty()) {
+                std::sort(over_bound.begin(), over_bound.end(),
+                          [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
+                over_bound.erase(std::unique(over_bound.begin(), over_bound.end()), over_bound.end());
                 const auto add = repair(over_bound);
                 st.bound_repairs += add.size();
                 for (const Point& p : add) {

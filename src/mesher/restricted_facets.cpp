@@ -25,12 +25,16 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
                                  const octree::SampleField::Reader& reader, int max_cells)
 {
     FacetRecord rec;
-    const Cell_handle c0 = f.first;
-    const Cell_handle c1 = c0->neighbor(f.second);
+    Cell_handle c0 = f.first;
+    Cell_handle c1 = c0->neighbor(f.second);
     if (dt.is_infinite(c0) || dt.is_infinite(c1)) {
         rec.overflow = true;
         return rec;
     }
+    // Walk the Voronoi edge in a canonical direction (from the cell whose apex has the smaller
+    // id): the record then does not depend on which of the two cells represents the facet, and
+    // so not on the triangulation's storage order (determinism).
+    if (c0->vertex(f.second)->info().id > c1->vertex(c1->index(c0))->info().id) std::swap(c0, c1);
     const Point a = robust_circumcenter(c0);
     const Point b = robust_circumcenter(c1);
     const auto& field = reader.field();

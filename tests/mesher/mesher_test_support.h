@@ -1,0 +1,54 @@
+#pragma once
+// Helpers for the mesher tests: mesh a manifest volume and certify the result with isodel verify
+// (an independent reference topology, exact Hausdorff bounds, exact Delaunay conformity).
+#include "../verify/verify_test_support.h"
+
+#include <isodel/mesh.h>
+#include <isodel/verify.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace isodel::testing {
+
+struct MeshAndVerify {
+    MeshResult mesh;
+    VerifyReport report;
+    std::vector<int> genera; ///< of M, sorted
+};
+
+inline MeshAndVerify mesh_and_verify(const openvdb::FloatGrid& grid, double iso, Inside inside, double eps_voxels,
+                                     int threads = 0)
+{
+    MeshAndVerify out;
+    MeshOptions mo;
+    mo.isovalue = iso;
+    mo.inside = inside;
+    mo.eps_voxels = eps_voxels;
+    mo.threads = threads;
+    out.mesh = mesh_isosurface(grid, mo);
+    VerifyOptions vo;
+    vo.isovalue = iso;
+    vo.inside = inside;
+    vo.eps_voxels = eps_voxels;
+    out.report = verify_surface(grid, out.mesh.surface, vo);
+    for (const auto& c : out.mesh.stats.components) out.genera.push_back(c.genus);
+    std::sort(out.genera.begin(), out.genera.end());
+    return out;
+}
+
+inline std::vector<int> expected_genera(const minijson::Value& entry)
+{
+    std::vector<int> g;
+    for (const auto& v : entry["expected_topology"]["genus"].arr) g.push_back(int(v.num));
+    std::sort(g.begin(), g.end());
+    return g;
+}
+
+inline Inside inside_of(const minijson::Value& entry)
+{
+    return entry["inside"].as_string() == "below" ? Inside::Below : Inside::Above;
+}
+
+} // namespace isodel::testing
