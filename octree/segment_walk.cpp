@@ -57,26 +57,60 @@ double bisect(const Cubic& q, double lo, double hi, bool lo_inside)
     return 0.5 * (lo + hi);
 }
 
-/// Is there a grid plane between index points p and q, or within tol of either?
-bool near_grid_plane(const Vec3d& p, const Vec3d& q, double tol)
+/// The grid plane (axis, coordinate) between index points p and q, or within tol of one of them.
+bool plane_between(const Vec3d& p, const Vec3d& q, double tol, int& axis, double& coord)
 {
     for (int k = 0; k < 3; ++k) {
-        if (std::floor(p[k]) != std::floor(q[k])) return true;
-        if (std::abs(p[k] - std::round(p[k])) < tol || std::abs(q[k] - std::round(q[k])) < tol) return true;
+        if (std::floor(p[k]) != std::floor(q[k])) {
+            axis = k;
+            coord = std::max(std::floor(p[k]), std::floor(q[k]));
+            return true;
+        }
+        for (const Vec3d* x : {&p, &q})
+            if (std::abs((*x)[k] - std::round((*x)[k])) < tol) {
+                axis = k;
+                coord = std::round((*x)[k]);
+                return true;
+            }
     }
     return false;
 }
 
-/// Drops consecutive crossing pairs that are the two sheets of a knife-edge crease (see header).
-void cancel_crease_pairs(std::vector<double>& t, const Vec3d& a, const Vec3d& d, double tol)
+/// First-order distance from x, projected onto the grid plane (axis, coord), to the curve where
+/// Sigma meets that plane: |F| / |in-plane gradient| of the (bilinear) face function.
+double crease_distance(const SampleField::Reader& reader, Vec3d x, int axis, double coord)
+{
+    x[axis] = coord;
+    Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
+    c[axis] = int(std::lround(coord)); // on the plane: in-plane values agree from both sides
+    double corner[8];
+    reader.cell_corners(c, corner);
+    const Trilinear f = Trilinear::from_corners(corner);
+    const Vec3d l = x - c.asVec3d();
+    Vec3d g = f.gradient(l[0], l[1], l[2]);
+    g[axis] = 0;
+    const double gl = g.length();
+    return gl > 0 ? std::abs(f(l[0], l[1], l[2])) / gl : INFINITY;
+}
+
+/// Drops consecutive crossing pairs that are the two sheets of a crease's tip (see header).
+void cancel_crease_pairs(const SampleField::Reader& reader, std::vector<double>& t, const Vec3d& a,
+                         const Vec3d& d, const CreaseTolerance& tol)
 {
     const double len = d.length();
     std::vector<double> kept;
     for (double ti : t) {
-        if (!kept.empty() && (ti - kept.back()) * len < tol &&
-            near_grid_plane(a + kept.back() * d, a + ti * d, tol)) {
-            kept.pop_back();
-            continue;
+        if (!kept.empty()) {
+            const Vec3d p = a + kept.back() * d, q = a + ti * d;
+            const double sep = (ti - kept.back()) * len;
+            int axis;
+            double coord;
+            if (plane_between(p, q, tol.separation, axis, coord) &&
+                (sep < tol.separation ||
+                 std::max(crease_distance(reader, p, axis, coord), crease_distance(reader, q, axis, coord)) < tol.trim)) {
+                kept.pop_back();
+                continue;
+            }
         }
         kept.push_back(ti);
     }
@@ -95,7 +129,7 @@ double phi_at(const SampleField::Reader& reader, const Vec3d& p)
 }
 
 SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3d& a,
-                                   const Vec3d& b, int max_cells, double crease_tolerance)
+                                   const Vec3d& b, int max_cells, const CreaseTolerance& crease)
 {
     SegmentCrossings out;
     const Vec3d d = b - a;
@@ -162,7 +196,7 @@ SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3
         t_next[axis] += t_delta[axis];
     }
     out.inside_at_end = inside(v0);
-    if (crease_tolerance > 0 && out.t.size() > 1) cancel_crease_pairs(out.t, a, d, crease_tolerance);
+    if ((crease.separation > 0 || crease.trim > 0) && out.t.size() > 1) cancel_crease_pairs(reader, out.t, a, d, crease);
     return out;
 }
 

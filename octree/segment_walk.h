@@ -22,19 +22,25 @@ struct SegmentCrossings {
     bool overflow = false; ///< the segment passed through more than max_cells cells
 };
 
-/// \p a, \p b in index space. Segments longer than max_cells cells report overflow and no roots.
-///
 /// Knife-edge creases: the trilinear Sigma is only C0 across cell faces, and where F has a ridge
 /// on a face the two sheets meet along the face at an arbitrarily small dihedral angle. A wedge
 /// is scale invariant, so near its edge Voronoi edges cross both sheets at every scale and the
-/// closed ball refinement would never end. Two consecutive crossings closer than
-/// \p crease_tolerance (index units) with a grid plane between or within that distance of them
-/// are the two sheets of such a wedge tip; they cancel. That meshes Sigma with the tip trimmed
-/// by less than crease_tolerance, which is isotopic to Sigma (it only shortens the wedge) and
-/// moves it far less than eps. 0 keeps every crossing.
+/// closed ball refinement would never end. Two consecutive crossings with a grid plane between
+/// them (or within `separation` of one) are the two sheets of such a wedge's tip and cancel when
+/// both lie within `trim` of the crease curve (Sigma on that plane, first-order distance), or when
+/// they are closer than `separation` to each other. That meshes Sigma with the wedge's tip cut
+/// off, which is isotopic to Sigma; `trim` (a fraction of eps) bounds how much of the tip goes,
+/// `separation` (1e-4 voxel) only acts on wedges sharper than separation / trim radians.
+/// Zero tolerances keep every crossing. All in index units.
+struct CreaseTolerance {
+    double separation = 0.0;
+    double trim = 0.0;
+};
+
+/// \p a, \p b in index space. Segments longer than max_cells cells report overflow and no roots.
 SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3d& a,
                                    const Vec3d& b, int max_cells = 64,
-                                   double crease_tolerance = 0.0);
+                                   const CreaseTolerance& crease = CreaseTolerance());
 
 /// phi at an index-space point (trilinear in its unit cell).
 double phi_at(const SampleField::Reader& reader, const Vec3d& p);

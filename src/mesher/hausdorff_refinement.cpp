@@ -1,6 +1,7 @@
 #include "mesher/hausdorff_refinement.h"
 
 #include "octree/cell_interpolant.h"
+#include "octree/segment_walk.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace isodel::mesher {
 namespace {
@@ -72,6 +74,24 @@ bool project(const octree::SampleField::Reader& reader, const openvdb::math::Mat
     return false;
 }
 
+/// The crossing of Sigma nearest to s on the segment s -/+ reach along n (Newton's fallback
+/// where phi is flat).
+bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec3d n, double reach, Vec3d& out)
+{
+    const double len = n.length();
+    if (!(len > 0)) return false;
+    n *= reach / len;
+    const auto& field = reader.field();
+    const Vec3d a = field.world_to_index(s - n), b = field.world_to_index(s + n);
+    const auto sc = octree::segment_crossings(reader, a, b, 256);
+    if (sc.overflow || sc.t.empty()) return false;
+    double best = sc.t.front();
+    for (double t : sc.t)
+        if (std::abs(t - 0.5) < std::abs(best - 0.5)) best = t;
+    out = field.index_to_world(a + best * (b - a));
+    return true;
+}
+
 struct Tri {
     Vec3d a, b, c;
 };
@@ -111,6 +131,9 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
     const double limit = 0.7 * eps_;
     const double step_cap = 0.5 * field_.min_voxel_edge();
     std::vector<char> bad(todo.size(), 0);
+    // Where M -> Sigma fails, the projection of the worst sample (a point of Sigma where the
+    // error is) is inserted instead of p, which may already be a vertex.
+    std::vector<std::optional<Vec3d>> at(todo.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
         auto& reader = readers.local();
@@ -137,10 +160,12 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
                     const Vec3d s = a + (b - a) * (double(u) / n) + (c - a) * (double(v) / n);
                     Vec3d q;
                     double d = (s - p).length(); // p is on Sigma: always an upper bound
-                    if (d > limit && project(reader, index_to_world_, world_to_index_, step_cap, s, q))
-                        d = std::min(d, (q - s).length());
+                    const bool projected = d > limit && project(reader, index_to_world_, world_to_index_, step_cap, s, q);
+                    if (projected) d = std::min(d, (q - s).length());
                     if (d > limit) {
                         bad[i] = 1;
+                        if (projected) at[i] = q;
+                        else if (along_normal(reader, s, (b - a).cross(c - a), 2.0 * eps_, q)) at[i] = q;
                         break;
                     }
                 }
@@ -156,7 +181,18 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
         double spacing = INFINITY;
         for (const auto& v : facet_vertices(e->facet))
             spacing = std::min(spacing, std::sqrt(CGAL::squared_distance(v->point(), e->record->surface_point)));
-        out.push_back({e->record->surface_point, PointKind::Geometry, spacing, e->key});
+        Point x = e->record->surface_point;
+        // q only helps when it lies in the facet's surface Delaunay ball (centre p, through its
+        // vertices): otherwise inserting it leaves the facet in place.
+        const double ball = std::sqrt(CGAL::squared_distance(x, facet_vertices(e->facet)[0]->point()));
+        if (at[i] && (*at[i] - to_vdb(x)).length() >= 0.999 * ball) at[i].reset();
+        if (at[i]) {
+            x = Point((*at[i])[0], (*at[i])[1], (*at[i])[2]);
+            spacing = INFINITY;
+            for (const auto& v : facet_vertices(e->facet))
+                spacing = std::min(spacing, std::sqrt(CGAL::squared_distance(v->point(), x)));
+        }
+        out.push_back({x, PointKind::Geometry, spacing, e->key});
     }
     return out;
 }

@@ -157,7 +157,11 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
         options.max_points ? options.max_points : 20 * st.e_points + 100000;
     const int max_cells_walk = 4 * st.bound_n + 16;
     const double hash_cell = 0.25 * field.min_voxel_edge();
-    FacetCache cache;
+    // Knife-edge crease tips (octree/segment_walk.h): cut at most eps/200 of them, in index units.
+    octree::CreaseTolerance crease;
+    crease.separation = 1e-4;
+    crease.trim = 0.005 * eps / field.min_voxel_edge(); // larger cuts split random_n6_s2
+    FacetCache cache(crease);
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells));
     double t_topology = 0, t_refine = 0;
     {

@@ -15,14 +15,11 @@ namespace {
 openvdb::Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
 Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
-/// Knife-edge crease pairs closer than this (index units) cancel (octree/segment_walk.h); far
-/// below any useful eps (the trimmed tip moves Sigma by less than 0.001 voxel).
-constexpr double kCreaseTolerance = 1e-3;
-
 } // namespace
 
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
-                                 const octree::SampleField::Reader& reader, int max_cells)
+                                 const octree::SampleField::Reader& reader, int max_cells,
+                                 const octree::CreaseTolerance& crease)
 {
     FacetRecord rec;
     Cell_handle c0 = f.first;
@@ -40,7 +37,7 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
     const auto& field = reader.field();
     const auto ia = field.world_to_index(to_vdb(a));
     const auto ib = field.world_to_index(to_vdb(b));
-    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells, kCreaseTolerance);
+    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells, crease);
     if (sc.overflow) {
         rec.overflow = true;
         return rec;
@@ -113,7 +110,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           auto& reader = readers.local();
                           for (std::size_t i = r.begin(); i != r.end(); ++i)
-                              fresh[i] = compute_facet_record(dt, todo[i].first, reader, max_cells);
+                              fresh[i] = compute_facet_record(dt, todo[i].first, reader, max_cells, crease_);
                       });
     for (std::size_t i = 0; i < todo.size(); ++i) map_.at(todo[i].second).record = fresh[i];
     active_.clear();

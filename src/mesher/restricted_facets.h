@@ -7,6 +7,7 @@
 // their Voronoi edges miss Sigma (Theorem 3).
 #include "mesher/delaunay.h"
 #include "octree/sample_field.h"
+#include "octree/segment_walk.h"
 
 #include <unordered_map>
 #include <vector>
@@ -23,7 +24,8 @@ struct FacetRecord {
 
 /// Crossings of the Voronoi edge dual to \p f with Sigma.
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
-                                 const octree::SampleField::Reader& reader, int max_cells);
+                                 const octree::SampleField::Reader& reader, int max_cells,
+                                 const octree::CreaseTolerance& crease);
 
 /// Cache of facet records keyed by vertex ids, maintained incrementally. A facet's Voronoi edge
 /// changes exactly when one of its two cells is replaced, and every cell an insertion destroys
@@ -33,6 +35,9 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
 /// insert().
 class FacetCache {
 public:
+    /// \p crease: how knife-edge crease tips are cut (octree/segment_walk.h).
+    explicit FacetCache(const octree::CreaseTolerance& crease) : crease_(crease) {}
+
     /// First call: scans every finite facet with a surface vertex. Later calls: only the facets
     /// around the points inserted since. Records are computed in parallel; each depends only on
     /// the triangulation, and the active list is sorted by key, so the result is deterministic.
@@ -56,6 +61,7 @@ private:
         Facet facet;
         FacetRecord record;
     };
+    octree::CreaseTolerance crease_;
     std::unordered_map<FacetKey, Stored, FacetKeyHash> map_;
     std::vector<Vertex_handle> inserted_;
     bool scanned_ = false;
