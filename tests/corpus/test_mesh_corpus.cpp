@@ -1,0 +1,57 @@
+// The shared volumes meshed at eps = 0.5 voxel: M has the manifest's topology (settled
+// independently of isodel) and isodel verify certifies every guarantee, with the voxel bound held.
+// Volumes the mesher does not yet get right (open defects of issue 4) run in a [!mayfail] case so
+// they are reported on every run; the slowest failures (1hpv_blobby, emd3001, marschner_lobb) are
+// left to tools/bench/corpus_runner. Label "corpus".
+#include <catch2/catch.hpp>
+
+#include "../mesher/mesher_test_support.h"
+
+using namespace isodel;
+
+namespace {
+
+void mesh_corpus(const std::vector<std::string>& files)
+{
+    const auto manifest = testing::read_manifest();
+    if (manifest.type != minijson::Value::Array) {
+        WARN("../shared/data not found at " << testing::shared_data() << ": test skipped");
+        SUCCEED();
+        return;
+    }
+    for (const std::string& file : files) {
+        const minijson::Value* entry = nullptr;
+        for (const auto& e : manifest.arr)
+            if (e["file"].as_string() == file) entry = &e;
+        REQUIRE(entry != nullptr);
+        const auto& e = *entry;
+        auto grid = testing::read_vdb(testing::shared_data() + "/" + file, e["grid_name"].as_string());
+        testing::MeshAndVerify r;
+        try {
+            r = testing::mesh_and_verify(*grid, e["isovalue"].as_number(), testing::inside_of(e), 0.5);
+        } catch (const std::exception& ex) {
+            FAIL_CHECK(file << ": " << ex.what());
+            continue;
+        }
+        INFO(file << "\n" << r.report.summary());
+        if (e.has("expected_topology") && e["expected_topology"].has("genus")) CHECK(r.genera == testing::expected_genera(e));
+        CHECK(r.report.passed());
+        CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
+        CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);
+    }
+}
+
+} // namespace
+
+TEST_CASE("shared volumes: topology and guarantees at eps 0.5 voxel", "[corpus][mesher]")
+{
+    mesh_corpus({"ct/skull_2.9.vdb", "levelset/eight.vdb", "analytic/torus.vdb", "analytic/genus3.vdb",
+                 "analytic/nested_spheres.vdb", "analytic/dumbbell_thin_neck.vdb",
+                 "analytic/dumbbell_thin_neck_density.vdb", "analytic/tangle_cube.vdb",
+                 "analytic/tangle_cube_half.vdb", "analytic/ellipsoid_aniso.vdb"});
+}
+
+TEST_CASE("shared volumes: known failures (extra components)", "[corpus][mesher][!mayfail]")
+{
+    mesh_corpus({"protein/1hpv_molmap_6A_2A.vdb", "analytic/gyroid_ball.vdb"});
+}
