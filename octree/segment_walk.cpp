@@ -107,7 +107,10 @@ void cancel_crease_pairs(const SampleField::Reader& reader, std::vector<double>&
             double coord;
             if (plane_between(p, q, tol.separation, axis, coord) &&
                 (sep < tol.separation ||
-                 std::max(crease_distance(reader, p, axis, coord), crease_distance(reader, q, axis, coord)) < tol.trim)) {
+                 // Both within trim of the crease curve in 3D: near the plane and, projected
+                 // onto it, near the curve.
+                 (std::max(std::abs(p[axis] - coord), std::abs(q[axis] - coord)) < tol.trim &&
+                  std::max(crease_distance(reader, p, axis, coord), crease_distance(reader, q, axis, coord)) < tol.trim))) {
                 kept.pop_back();
                 continue;
             }
