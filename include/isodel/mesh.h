@@ -3,7 +3,8 @@
 /// DELSURFMESH: a surface mesh M of a level set Sigma = {F = v} of the trilinear interpolant F of a
 /// sampled volume, with the paper's guarantees (Goswami, Gillette, Bajaj, Sections 4.1-4.3 and 5):
 ///  I.   M is homeomorphic to Sigma (closed ball property of Vor(E u G u N), Theorem 1);
-///  II.  every restricted facet's surface point lies within eps of its circumcentre;
+///  II.  the two-sided Hausdorff distance between M and Sigma is at most eps (the paper's
+///       circumcentre criterion, then local measurement: src/mesher/hausdorff_refinement.h);
 ///  III. M is a subcomplex of the Delaunay triangulation of its vertices;
 ///  IV.  the same on adaptive grids (see octree/).
 ///
