@@ -1,5 +1,7 @@
 #include "mesher/hausdorff_refinement.h"
 
+#include "geometry/closest_on_triangle.h"
+
 #include "octree/cell_interpolant.h"
 #include "octree/segment_walk.h"
 
@@ -22,28 +24,6 @@ namespace {
 using Vec3d = openvdb::Vec3d;
 
 Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
-
-/// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-Vec3d closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c)
-{
-    const Vec3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const Vec3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 /// Newton projection of a world point onto Sigma along the world gradient of phi. Returns false
 /// when it does not converge (flat phi): the caller then has no bound from it.
@@ -143,10 +123,10 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
             const Vec3d a = to_vdb(vs[0]->point()), b = to_vdb(vs[1]->point()), c = to_vdb(vs[2]->point());
             const Vec3d p = to_vdb(e->record->surface_point);
             // Sigma -> M at p.
-            double dp = (closest_on_triangle(p, a, b, c) - p).length();
+            double dp = (geometry::closest_on_triangle(p, a, b, c) - p).length();
             const auto& k = e->key.v;
             for (const auto& edge : {std::make_pair(k[0], k[1]), std::make_pair(k[0], k[2]), std::make_pair(k[1], k[2])})
-                for (const Tri& t : by_edge.at(edge)) dp = std::min(dp, (closest_on_triangle(p, t.a, t.b, t.c) - p).length());
+                for (const Tri& t : by_edge.at(edge)) dp = std::min(dp, (geometry::closest_on_triangle(p, t.a, t.b, t.c) - p).length());
             if (dp > limit) {
                 bad[i] = 1;
                 continue;

@@ -16,6 +16,8 @@
 // exact (CGAL AABB tree of M's triangles). sup over Sigma <= max + sample_spacing (the length
 // of a sub-lattice diagonal, sqrt(3) voxel / R_h).
 #include "verify/checks.h"
+
+#include "geometry/closest_on_triangle.h"
 #include "verify/refined_lattice.h"
 
 #include <CGAL/AABB_traits.h>
@@ -72,28 +74,6 @@ struct Accum {
         return s;
     }
 };
-
-/// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-Vec3d closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c)
-{
-    const Vec3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const Vec3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double den = 1.0 / (va + vb + vc);
-    return a + ab * (vb * den) + ac * (vc * den);
-}
 
 std::uint64_t cell_key(const Coord& c, const Coord& base)
 {
@@ -192,7 +172,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
                     const Coord c(i, j, k);
                     if (c[0] < base[0] || c[1] < base[1] || c[2] < base[2] || !crossed.count(cell_key(c, base))) continue;
                     L.refiner.run(L.ev.reader(), c, base, [&](const RefTriangle& t) {
-                        const Vec3d q = closest_on_triangle(p, field.to_world(t.pos[0]), field.to_world(t.pos[1]),
+                        const Vec3d q = geometry::closest_on_triangle(p, field.to_world(t.pos[0]), field.to_world(t.pos[1]),
                                                             field.to_world(t.pos[2]));
                         const double d = (q - p).length();
                         if (d < bestd) {
