@@ -189,14 +189,14 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                 throw GuaranteeViolated(os.str());
             }
             cache.update(dt, field, max_cells_walk);
-            ViolationReport rep = find_violations(dt, cache, eps);
-            if (rep.kind != Violation::Unbounded) {
-                auto grid = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
-                if (!grid.empty()) {
-                    rep.kind = Violation::GridCell;
-                    rep.candidates = std::move(grid);
-                }
-            }
+            // Priority: voxel-bound holes, then Theorem 3 (grid cells), then find_violations'
+            // classes; the later checks run only when the earlier ones found nothing.
+            const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
+                                               [](const FacetCache::Entry& e) { return e.record->overflow; });
+            ViolationReport rep;
+            if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
+            if (!rep.candidates.empty()) rep.kind = Violation::GridCell;
+            else rep = find_violations(dt, cache, eps);
             if (std::getenv("ISODEL_TRACE"))
                 std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
