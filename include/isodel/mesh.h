@@ -29,6 +29,11 @@
 
 namespace isodel {
 
+/// DELVOLMESH (paper Section 4.1): which tetrahedra of Del(E u G u N u G') to return.
+/// Inside: the region {F inside v}, bounded by M. Outside: the rest of the grid's box (the active
+/// bounding box grown by one voxel, enlarged to hold the protective layer). Both: both, tagged.
+enum class TetRegion { None, Inside, Outside, Both };
+
 struct MeshOptions {
     double isovalue = 0.0;               ///< v, in value units
     std::optional<Inside> inside;        ///< default: Below for level-set grids, Above otherwise
@@ -38,6 +43,18 @@ struct MeshOptions {
     int threads = 0;                     ///< 0 = all hardware threads; result does not depend on it
     std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 20 x |E| + 10^5
     int max_rounds = 2000;               ///< cap on insertion rounds
+    TetRegion tets = TetRegion::None;    ///< also build a tetrahedral mesh (DELVOLMESH)
+};
+
+/// Quality and size of the tetrahedral mesh (all figures over the returned tetrahedra).
+struct TetStats {
+    std::size_t vertices = 0, tets_inside = 0, tets_outside = 0;
+    std::size_t g_prime = 0;              ///< grid points G' added (Section 4.1)
+    double volume_inside = 0, volume_outside = 0; ///< world units cubed, sums of tet volumes
+    double volume_enclosed_by_surface = 0;        ///< of M, by the divergence theorem
+    double min_dihedral_deg = 0, max_dihedral_deg = 0;
+    double max_radius_edge = 0;           ///< circumradius / shortest edge, worst tet
+    std::vector<std::size_t> dihedral_histogram; ///< 18 bins of 10 degrees, 6 angles per tet
 };
 
 /// Topology of one connected component of a closed surface mesh.
@@ -54,7 +71,7 @@ struct MeshStats {
     int rounds = 0;
     double effective_isovalue = 0.0;
     double eps_world = 0.0;
-    /// Seconds per phase: read, points, delaunay, closed_ball, refine, write, total.
+    /// Seconds per phase: read, points, delaunay, closed_ball, refine, tets, write, total.
     std::map<std::string, double> seconds;
     std::size_t peak_memory_bytes = 0;
     /// Voxel bound (Theorem 2): the most cells a Voronoi cell of an E / N point met, and the
@@ -62,10 +79,15 @@ struct MeshStats {
     int max_cells_e = 0, max_cells_n = 0, bound_e = 4, bound_n = 27;
     std::size_t bound_repairs = 0;       ///< grid points added where a Voronoi cell left its bound
     std::vector<ComponentTopology> components;
+    TetStats tets;                        ///< filled when MeshOptions::tets != None
 };
 
 struct MeshResult {
     SurfaceMesh surface;
+    /// With MeshOptions::tets: the tetrahedra of the chosen region(s). Its first
+    /// surface.vertices.size() vertices are surface.vertices in the same order, and
+    /// tets.triangles == surface.triangles, so the inside region's boundary is M index for index.
+    TetMesh tets;
     MeshStats stats;
 };
 

@@ -29,6 +29,16 @@ struct TetMesh {
 /// \throw InvalidInput unknown extension; \throw IoError on write failure.
 void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh);
 
+/// Writes a tetrahedral mesh; the format follows the extension: .mesh (Medit ASCII: vertices,
+/// triangles with ref 1, tetrahedra with their region ref), .vtu (VTK XML, raw appended binary,
+/// cell data "region"; the surface triangles are not cells), .msh (Gmsh 4.1 ASCII: physical
+/// groups 1 "inside", 2 "outside" (volumes) and 3 "surface"). Written atomically like
+/// write_surface_mesh. \throw InvalidInput unknown extension (names the file); \throw IoError.
+void write_tet_mesh(const std::string& path, const TetMesh& mesh);
+
+/// True when \p path ends in an extension write_tet_mesh accepts.
+bool is_tet_mesh_path(const std::string& path);
+
 /// Reads a surface mesh written by isodel or another tool (.ply ascii/binary, .obj, .off, .stl).
 /// STL vertices are merged by exact position.
 /// \throw InvalidInput, IoError

@@ -9,6 +9,7 @@
 #include "mesher/restricted_facets.h"
 #include "mesher/surface_extraction.h"
 #include "mesher/thin_tubes.h"
+#include "mesher/volume_mesh.h"
 #include "mesher/voxel_bound.h"
 #include "octree/edge_crossings.h"
 #include "octree/protective_layer.h"
@@ -249,6 +250,17 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     st.vertices = result.surface.vertices.size();
     st.triangles = result.surface.triangles.size();
     st.components = surface_topology(result.surface);
+    if (options.tets != TetRegion::None) {
+        // DELVOLMESH (Section 4.1): fill the region(s) with G', keeping M (src/mesher/volume_mesh.h).
+        t0 = Clock::now();
+        VolumeMeshParams vp;
+        vp.region = options.tets;
+        vp.max_cells_walk = max_cells_walk;
+        vp.next_id = &next_id;
+        vp.interrupter = interrupter;
+        result.tets = build_volume_mesh(dt, cache, field, *g_mask, result.surface, vp, st.tets);
+        st.seconds["tets"] = since(t0);
+    }
     st.seconds["total"] = since(t_start);
     st.peak_memory_bytes = peak_memory_bytes();
     return result;

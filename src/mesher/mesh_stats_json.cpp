@@ -29,7 +29,19 @@ std::string to_json(const MeshStats& s)
         o << (i ? ", " : "") << "{\"euler\": " << c.euler << ", \"genus\": " << c.genus
           << ", \"triangles\": " << c.triangles << "}";
     }
-    o << "]}\n}\n";
+    o << "]}";
+    const TetStats& t = s.tets;
+    if (t.vertices > 0) {
+        o << ",\n  \"tets\": {\"vertices\": " << t.vertices << ", \"tets_inside\": " << t.tets_inside
+          << ", \"tets_outside\": " << t.tets_outside << ", \"G_prime\": " << t.g_prime
+          << ",\n    \"volume_inside\": " << t.volume_inside << ", \"volume_outside\": " << t.volume_outside
+          << ", \"volume_enclosed_by_surface\": " << t.volume_enclosed_by_surface
+          << ",\n    \"min_dihedral_deg\": " << t.min_dihedral_deg << ", \"max_dihedral_deg\": " << t.max_dihedral_deg
+          << ", \"max_radius_edge\": " << t.max_radius_edge << ",\n    \"dihedral_histogram_10deg\": [";
+        for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
+        o << "]}";
+    }
+    o << "\n}\n";
     return o.str();
 }
 

@@ -1,0 +1,79 @@
+#include "mesher/tet_quality.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isodel::mesher {
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(const V3& a, const V3& b)
+{
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+
+constexpr double kPi = 3.14159265358979323846;
+
+} // namespace
+
+double signed_tet_volume(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    return dot(sub(b, a), cross(sub(c, a), sub(d, a))) / 6.0;
+}
+
+double enclosed_volume(const SurfaceMesh& mesh)
+{
+    if (mesh.vertices.empty()) return 0;
+    const V3& o = mesh.vertices[0];
+    double v = 0;
+    for (const auto& t : mesh.triangles)
+        v += signed_tet_volume(o, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+    return v;
+}
+
+void measure_tet_quality(const TetMesh& mesh, TetStats& st)
+{
+    st.vertices = mesh.vertices.size();
+    st.tets_inside = st.tets_outside = 0;
+    st.volume_inside = st.volume_outside = 0;
+    st.min_dihedral_deg = mesh.tets.empty() ? 0 : 180;
+    st.max_dihedral_deg = 0;
+    st.max_radius_edge = 0;
+    st.dihedral_histogram.assign(18, 0);
+    static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                         {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        const V3* p[4];
+        for (int j = 0; j < 4; ++j) p[j] = &mesh.vertices[std::size_t(mesh.tets[t][j])];
+        const double vol = signed_tet_volume(*p[0], *p[1], *p[2], *p[3]);
+        (mesh.tet_region[t] == 1 ? st.volume_inside : st.volume_outside) += vol;
+        (mesh.tet_region[t] == 1 ? st.tets_inside : st.tets_outside) += 1;
+        double shortest = INFINITY;
+        for (const auto& e : kEdges) {
+            // Dihedral angle at edge (e0, e1): the angle between the normals e x (p2 - p0) and
+            // e x (p3 - p0), a quarter turn about e of the two faces' in-plane directions.
+            const V3 ev = sub(*p[e[1]], *p[e[0]]);
+            shortest = std::min(shortest, norm(ev));
+            const V3 n1 = cross(ev, sub(*p[e[2]], *p[e[0]]));
+            const V3 n2 = cross(ev, sub(*p[e[3]], *p[e[0]]));
+            const double c = std::clamp(dot(n1, n2) / (norm(n1) * norm(n2)), -1.0, 1.0);
+            const double deg = std::acos(c) * 180.0 / kPi;
+            st.min_dihedral_deg = std::min(st.min_dihedral_deg, deg);
+            st.max_dihedral_deg = std::max(st.max_dihedral_deg, deg);
+            st.dihedral_histogram[std::min<std::size_t>(17, std::size_t(deg / 10.0))]++;
+        }
+        // Circumradius from the vertex-relative formula (Shewchuk, "Lecture notes on Delaunay
+        // mesh generation", Sec. 1.10): |a|^2 (b x c) + |b|^2 (c x a) + |c|^2 (a x b) / (2 a.(b x c)).
+        const V3 a = sub(*p[1], *p[0]), b = sub(*p[2], *p[0]), c = sub(*p[3], *p[0]);
+        const V3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+        const double den = 2 * dot(a, bc);
+        V3 r;
+        for (int k = 0; k < 3; ++k) r[k] = (dot(a, a) * bc[k] + dot(b, b) * ca[k] + dot(c, c) * ab[k]) / den;
+        st.max_radius_edge = std::max(st.max_radius_edge, norm(r) / shortest);
+    }
+}
+
+} // namespace isodel::mesher

@@ -1,0 +1,159 @@
+#include "mesher/volume_mesh.h"
+
+#include "mesher/grid_cell_check.h"
+#include "mesher/interior_points.h"
+#include "mesher/region_labels.h"
+#include "mesher/surface_extraction.h"
+#include "mesher/tet_quality.h"
+
+#include <isodel/errors.h>
+
+#include <CGAL/spatial_sort.h>
+
+#include <algorithm>
+#include <sstream>
+#include <unordered_map>
+
+namespace isodel::mesher {
+namespace {
+
+/// Throws unless re-extracting M after G' gives \p before exactly.
+void check_surface_unchanged(const Delaunay& dt, const FacetCache& cache, const SurfaceMesh& before)
+{
+    const SurfaceMesh after = extract_surface(dt, cache);
+    if (after.vertices == before.vertices && after.triangles == before.triangles) return;
+    std::ostringstream os;
+    os << "DELVOLMESH: inserting the interior grid points G' changed the restricted Delaunay surface ("
+       << before.triangles.size() << " triangles before, " << after.triangles.size()
+       << " after): the protective layer did not keep G' off Sigma (Theorem 3)";
+    throw GuaranteeViolated(os.str());
+}
+
+} // namespace
+
+TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleField& field,
+                          const openvdb::MaskGrid& g_mask, const SurfaceMesh& surface,
+                          const VolumeMeshParams& params, TetStats& st)
+{
+    InterruptScope scope(params.interrupter, "tets");
+    // 1. G', in Hilbert order (CGAL's spatial_sort: biased randomised insertion order with a
+    // fixed seed, so deterministic). Raster order would be quadratic here: far from Sigma the
+    // box is empty, and each point of a raster row conflicts with cells spanning the whole row.
+    std::vector<Point> pts;
+    {
+        const std::vector<openvdb::Coord> gp = interior_points(field, g_mask, params.region);
+        pts.reserve(gp.size());
+        for (const auto& c : gp) {
+            const auto w = field.index_to_world(c.asVec3d());
+            pts.emplace_back(w[0], w[1], w[2]);
+        }
+    }
+    CGAL::spatial_sort(pts.begin(), pts.end(), K());
+    std::vector<Vertex_handle> added;
+    added.reserve(pts.size());
+    Cell_handle hint;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Vertex_handle v = cache.insert(dt, pts[i], VertexInfo{(*params.next_id)++, PointKind::Grid}, hint);
+        if (v == Vertex_handle()) continue;
+        hint = v->cell();
+        added.push_back(v);
+        if ((i & 0xFFFF) == 0) scope.check(int(40 * i / pts.size()));
+    }
+    st.g_prime = added.size();
+
+    // 2. Conformity, checked rather than assumed: M recomputed from the new triangulation, and
+    // Theorem 3 for every G' point (its Voronoi cell stays on its own side of Sigma).
+    cache.update(dt, field, params.max_cells_walk);
+    check_surface_unchanged(dt, cache, surface);
+    scope.check(60);
+    // In chunks: grid_cell_violations gathers every pending point's incident cells at once.
+    std::size_t bad = 0;
+    Point first_bad;
+    for (std::size_t i = 0; i < added.size(); i += 65536) {
+        std::vector<Vertex_handle> pending(added.begin() + std::ptrdiff_t(i),
+                                           added.begin() + std::ptrdiff_t(std::min(added.size(), i + 65536)));
+        const std::vector<Candidate> found = grid_cell_violations(dt, field, pending, params.max_cells_walk);
+        if (!found.empty() && bad == 0) first_bad = found.front().p;
+        bad += found.size();
+    }
+    if (bad) {
+        std::ostringstream os;
+        os << "DELVOLMESH: " << bad << " interior grid points G' have Voronoi cells that meet Sigma "
+           << "(Theorem 3), the first near (" << first_bad << ")";
+        throw GuaranteeViolated(os.str());
+    }
+    scope.check(70);
+
+    // 3. Inside/outside labels consistent with M (region_labels.h).
+    const std::vector<std::int8_t> label = region_labels(dt, cache);
+    const auto& cells = dt.tds().cells();
+
+    // 4. Numbering: M's vertices first, in surface.vertices order (extract_surface sorts them by
+    // id), then the other vertices of the kept tetrahedra by id: independent of memory layout.
+    std::vector<std::uint32_t> surface_ids;
+    for (const auto& e : cache.active())
+        if (e.record->crossings == 1)
+            for (const auto& v : facet_vertices(e.facet)) surface_ids.push_back(v->info().id);
+    std::sort(surface_ids.begin(), surface_ids.end());
+    surface_ids.erase(std::unique(surface_ids.begin(), surface_ids.end()), surface_ids.end());
+    std::unordered_map<std::uint32_t, std::int32_t> index;
+    index.reserve(dt.number_of_vertices());
+    for (std::size_t i = 0; i < surface_ids.size(); ++i) index[surface_ids[i]] = std::int32_t(i);
+
+    const bool keep_in = params.region == TetRegion::Inside || params.region == TetRegion::Both;
+    const bool keep_out = params.region == TetRegion::Outside || params.region == TetRegion::Both;
+    std::vector<std::pair<std::uint32_t, Vertex_handle>> others;
+    std::vector<std::pair<std::array<Vertex_handle, 4>, std::int8_t>> kept;
+    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+        const std::int8_t l = label[cells.index(Cell_handle(c))];
+        if (!(l == 1 ? keep_in : keep_out)) continue;
+        kept.push_back({{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, l});
+        for (int j = 0; j < 4; ++j)
+            if (!index.count(c->vertex(j)->info().id)) others.emplace_back(c->vertex(j)->info().id, c->vertex(j));
+    }
+    std::sort(others.begin(), others.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    others.erase(std::unique(others.begin(), others.end(),
+                             [](const auto& a, const auto& b) { return a.first == b.first; }),
+                 others.end());
+
+    TetMesh mesh;
+    mesh.vertices = surface.vertices;
+    for (const auto& [id, v] : others) {
+        index[id] = std::int32_t(mesh.vertices.size());
+        mesh.vertices.push_back({v->point().x(), v->point().y(), v->point().z()});
+    }
+    struct Tet {
+        std::array<std::int32_t, 4> v;
+        std::int8_t region;
+    };
+    std::vector<Tet> tets;
+    tets.reserve(kept.size());
+    for (const auto& [vs, l] : kept) {
+        // CGAL stores finite cells positively oriented; sort the indices and restore the
+        // orientation with one transposition when the sort was an odd permutation.
+        std::array<std::int32_t, 4> a;
+        for (int j = 0; j < 4; ++j) a[j] = index.at(vs[j]->info().id);
+        bool odd = false;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j + 1 < 4 - i; ++j)
+                if (a[j] > a[j + 1]) {
+                    std::swap(a[j], a[j + 1]);
+                    odd = !odd;
+                }
+        if (odd) std::swap(a[2], a[3]);
+        tets.push_back({a, l});
+    }
+    std::sort(tets.begin(), tets.end(), [](const Tet& x, const Tet& y) { return x.v < y.v; });
+    mesh.tets.reserve(tets.size());
+    mesh.tet_region.reserve(tets.size());
+    for (const auto& t : tets) {
+        mesh.tets.push_back(t.v);
+        mesh.tet_region.push_back(t.region);
+    }
+    mesh.triangles = surface.triangles;
+    measure_tet_quality(mesh, st);
+    st.volume_enclosed_by_surface = enclosed_volume(surface);
+    return mesh;
+}
+
+} // namespace isodel::mesher
