@@ -45,6 +45,7 @@ const char* to_string(Violation v)
     case Violation::VoronoiEdge: return "CBP_VE";
     case Violation::GridVertex: return "grid-vertex";
     case Violation::VoronoiFacet: return "CBP_VF";
+    case Violation::FacetLoop: return "CBP_VF-loop";
     case Violation::VoronoiCell: return "CBP_VC";
     case Violation::Epsilon: return "epsilon";
     case Violation::Hausdorff: return "hausdorff";

@@ -23,6 +23,7 @@ enum class Violation {
     GridVertex,   ///< a restricted facet has a grid vertex: its surface point is inserted so
                   ///< that M's vertices lie on Sigma
     VoronoiFacet, ///< CBP_VF: a Delaunay edge has other than 0 or 2 restricted facets
+    FacetLoop,    ///< CBP_VF: Sigma meets a Voronoi facet in a closed loop (facet_loops.h)
     VoronoiCell,  ///< CBP_VC: a surface vertex's restricted link is not one cycle (Theorem 5)
     Epsilon,      ///< |surface point - circumcentre| > eps (Section 4.1, mesh refinement)
     Hausdorff,    ///< a one-sided distance between a facet and Sigma exceeds eps (measured)

@@ -1,8 +1,9 @@
 // DELSURFMESH (paper Fig. 3), the data flow visible top-down:
 //   samples --edge_crossings--> E,  crossed cells --protective_layer--> G,
-//   Del(E u G) --closed ball (VE, grid vertex, VF, VC)--> --eps refinement--> Del(E u G u N)|Sigma.
+//   Del(E u G) --closed ball (VE, grid vertex, VF, VC, VF loops)--> --eps refinement--> Del(E u G u N)|Sigma.
 #include "mesher/closed_ball.h"
 #include "mesher/delaunay.h"
+#include "mesher/facet_loops.h"
 #include "mesher/grid_cell_check.h"
 #include "mesher/hausdorff_refinement.h"
 #include "mesher/point_insertion.h"
@@ -164,6 +165,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     crease.trim = 0.005 * eps / field.min_voxel_edge(); // larger cuts split random_n6_s2
     FacetCache cache(crease);
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells));
+    FacetLoopScanner loops;
     double t_topology = 0, t_refine = 0;
     {
         InterruptScope scope(interrupter, "closed_ball");
@@ -179,6 +181,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                     if (v == Vertex_handle()) continue;
                     ++next_id;
                     grid_pending.push_back(v);
+                    loops.touched(v);
                 }
                 over_bound.clear();
             }
@@ -203,6 +206,11 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
                              cache.computed_last_update());
             if (rep.kind == Violation::None) {
+                // Loops inside Voronoi facets (CBP_VF, second clause): once the cheaper checks pass.
+                rep.candidates = loops.scan(dt, field, max_cells_walk, crease.trim);
+                if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
+            }
+            if (rep.kind == Violation::None) {
                 std::vector<const FacetCache::Entry*> restricted;
                 for (const auto& e : cache.active())
                     if (e.record->crossings == 1) restricted.push_back(&e);
@@ -223,6 +231,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
             }
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
             for (const auto& v : ins.inserted) {
+                loops.touched(v);
                 if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff) ++st.n_geometry;
                 else ++st.n_topology;
                 measure(v, st.max_cells_n, st.bound_n, over_bound);

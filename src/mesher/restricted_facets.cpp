@@ -3,8 +3,10 @@
 #include "mesher/circumcenter.h"
 #include "octree/segment_walk.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -70,7 +72,10 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     dt.find_conflicts(p, loc, CGAL::Emptyset_iterator(), std::back_inserter(conflicts));
     for (const Cell_handle& c : conflicts)
         for (int i = 0; i < 4; ++i)
-            if (!dt.is_infinite(c, i)) map_.erase(facet_key(Facet(c, i)));
+            if (!dt.is_infinite(c, i)) {
+                const FacetKey k = facet_key(Facet(c, i));
+                if (map_.erase(k)) changed_.push_back(k);
+            }
     const Vertex_handle v = dt.insert(p, lt, loc, li, lj);
     v->info() = info;
     inserted_.push_back(v);
@@ -113,10 +118,30 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                               fresh[i] = compute_facet_record(dt, todo[i].first, reader, max_cells, crease_);
                       });
     for (std::size_t i = 0; i < todo.size(); ++i) map_.at(todo[i].second).record = fresh[i];
-    active_.clear();
-    for (const auto& [key, stored] : map_)
-        if (stored.record.crossings > 0 || stored.record.overflow) active_.push_back({stored.facet, key, &stored.record});
-    std::sort(active_.begin(), active_.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+
+    // Keep the active list sorted without rescanning the map: drop the entries whose facet was
+    // destroyed or recomputed, then merge in the recomputed active ones.
+    const auto by_key = [](const Entry& a, const Entry& b) { return a.key < b.key; };
+    std::vector<Entry> added;
+    for (const auto& [f, key] : todo) {
+        const Stored& st = map_.at(key);
+        if (st.record.crossings > 0 || st.record.overflow) added.push_back({st.facet, key, &st.record});
+    }
+    std::sort(added.begin(), added.end(), by_key);
+    for (const auto& t : todo) changed_.push_back(t.second);
+    if (!changed_.empty() && !active_.empty()) {
+        std::sort(changed_.begin(), changed_.end());
+        active_.erase(std::remove_if(active_.begin(), active_.end(),
+                                     [&](const Entry& e) {
+                                         return std::binary_search(changed_.begin(), changed_.end(), e.key);
+                                     }),
+                      active_.end());
+    }
+    changed_.clear();
+    std::vector<Entry> merged;
+    merged.reserve(active_.size() + added.size());
+    std::merge(active_.begin(), active_.end(), added.begin(), added.end(), std::back_inserter(merged), by_key);
+    active_.swap(merged);
 }
 
 } // namespace isodel::mesher

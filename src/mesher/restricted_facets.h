@@ -64,6 +64,7 @@ private:
     octree::CreaseTolerance crease_;
     std::unordered_map<FacetKey, Stored, FacetKeyHash> map_;
     std::vector<Vertex_handle> inserted_;
+    std::vector<FacetKey> changed_; ///< keys erased by insert() since the last update
     bool scanned_ = false;
     std::vector<Entry> active_;
     std::size_t computed_ = 0;

@@ -166,6 +166,10 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
         }
         Vec3d bestq;
         double bestd = 1e300;
+        // Vertices of the refined triangles on axis-aligned sub-lattice edges are on Sigma (F is
+        // linear along an axis line inside a cell), so the nearest one bounds dist(p, Sigma) above
+        // when the projection below does not converge (e.g. near a cut needle tip).
+        double vertex_bound = 1e300;
         for (int k = int(std::floor(lo[2])); k <= int(std::floor(hi[2])); ++k)
             for (int j = int(std::floor(lo[1])); j <= int(std::floor(hi[1])); ++j)
                 for (int i = int(std::floor(lo[0])); i <= int(std::floor(hi[0])); ++i) {
@@ -174,6 +178,11 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
                     L.refiner.run(L.ev.reader(), c, base, [&](const RefTriangle& t) {
                         const Vec3d q = geometry::closest_on_triangle(p, field.to_world(t.pos[0]), field.to_world(t.pos[1]),
                                                             field.to_world(t.pos[2]));
+                        for (int v = 0; v < 3; ++v) {
+                            const unsigned dir = unsigned(t.key[v] & 7u);
+                            if (dir == 1 || dir == 2 || dir == 4) // axis-aligned: exactly on Sigma
+                                vertex_bound = std::min(vertex_bound, (field.to_world(t.pos[v]) - p).length());
+                        }
                         const double d = (q - p).length();
                         if (d < bestd) {
                             bestd = d;
@@ -183,8 +192,8 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
                 }
         if (bestd == 1e300) return false;
         Vec3d y;
-        if (!L.ev.project(field.to_index(bestq), y)) return false;
-        best = std::min(best, (field.to_world(y) - p).length());
+        if (L.ev.project(field.to_index(bestq), y)) vertex_bound = std::min(vertex_bound, (field.to_world(y) - p).length());
+        best = std::min(best, vertex_bound);
         return true;
     };
 

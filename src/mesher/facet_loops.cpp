@@ -1,0 +1,214 @@
+#include "mesher/facet_loops.h"
+
+#include "mesher/circumcenter.h"
+#include "octree/segment_walk.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace isodel::mesher {
+namespace {
+
+using octree::Vec3d;
+
+struct EdgeJob {
+    Delaunay::Edge edge;
+    std::uint32_t a, b; // vertex ids, a < b
+};
+
+/// q strictly inside the convex polygon P (coplanar, normal N from the polygon's own order).
+bool strictly_inside(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& q)
+{
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        const Vec3d e = P[(i + 1) % P.size()] - P[i];
+        if (e.lengthSqr() == 0) continue; // coincident Voronoi vertices (cospherical points)
+        if (e.cross(q - P[i]).dot(N) <= 0) return false;
+    }
+    return true;
+}
+
+/// Points where the facet's plane meets grid edges inside the facet, with phi there.
+template <class Visit>
+void grid_edge_points(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& lo, const Vec3d& hi,
+                      Visit&& visit)
+{
+    const double c = N.dot(P[0]);
+    for (int d = 0; d < 3; ++d) {
+        const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
+        if (std::abs(N[d]) < 1e-9 * N.length()) continue; // plane parallel to these edges
+        for (int u = int(std::ceil(lo[e1])); u <= int(std::floor(hi[e1])); ++u)
+            for (int v = int(std::ceil(lo[e2])); v <= int(std::floor(hi[e2])); ++v) {
+                Vec3d q;
+                q[e1] = u;
+                q[e2] = v;
+                q[d] = (c - N[e1] * u - N[e2] * v) / N[d];
+                if (q[d] < lo[d] || q[d] > hi[d]) continue;
+                if (strictly_inside(P, N, q)) visit(d, q);
+            }
+    }
+}
+
+std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, const octree::SampleField& field,
+                                     const octree::SampleField::Reader& reader, int max_cells, double trim)
+{
+    // The Voronoi facet: circumcentres of the cells around the edge, in circulation order.
+    // Canonical order (determinism: the same facet gives bit-identical points whichever cell
+    // represents its edge): circulate around the edge oriented from the lower id to the higher,
+    // starting at the cell with the smallest sorted vertex ids.
+    const Cell_handle c0 = job.edge.first;
+    Vertex_handle va = c0->vertex(job.edge.second), vb = c0->vertex(job.edge.third);
+    if (va->info().id > vb->info().id) std::swap(va, vb);
+    std::vector<Cell_handle> ring;
+    auto cc = dt.incident_cells(Delaunay::Edge(c0, c0->index(va), c0->index(vb))), done = cc;
+    do {
+        if (dt.is_infinite(cc)) return std::nullopt; // unbounded: the voxel-bound repair's business
+        ring.push_back(cc);
+    } while (++cc != done);
+    auto key = [](const Cell_handle& c) {
+        std::array<std::uint32_t, 4> k;
+        for (int i = 0; i < 4; ++i) k[i] = c->vertex(i)->info().id;
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < ring.size(); ++i)
+        if (key(ring[i]) < key(ring[first])) first = i;
+    std::rotate(ring.begin(), ring.begin() + std::ptrdiff_t(first), ring.end());
+    std::vector<Vec3d> P;
+    for (const auto& c : ring) {
+        const Point w = robust_circumcenter(c);
+        P.push_back(field.world_to_index({w.x(), w.y(), w.z()}));
+    }
+
+    // The boundary's sign: mixed means an arc crosses the facet (edge-count test's business).
+    const bool inside = octree::phi_at(reader, P[0]) >= 0;
+    for (const auto& p : P)
+        if ((octree::phi_at(reader, p) >= 0) != inside) return std::nullopt;
+
+    Vec3d N(0, 0, 0), lo = P[0], hi = P[0];
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        const Vec3d& p = P[i];
+        const Vec3d& q = P[(i + 1) % P.size()];
+        N += Vec3d((p.y() - q.y()) * (p.z() + q.z()), (p.z() - q.z()) * (p.x() + q.x()),
+                   (p.x() - q.x()) * (p.y() + q.y())); // Newell's normal
+        lo = openvdb::math::minComponent(lo, p);
+        hi = openvdb::math::maxComponent(hi, p);
+    }
+    if (N.lengthSqr() == 0) return std::nullopt;
+    const Vec3d span = hi - lo;
+    if ((span.x() + 1) * (span.y() + 1) * (span.z() + 1) > 8.0 * max_cells) return std::nullopt;
+
+    // The deepest point of the opposite sign.
+    std::optional<Vec3d> witness;
+    double depth = 0;
+    grid_edge_points(P, N, lo, hi, [&](int axis, const Vec3d& q) {
+        const double phi = octree::phi_at(reader, q);
+        const bool q_inside = phi >= 0;
+        if (q_inside == inside || std::abs(phi) <= depth) return;
+        // A witness within `trim` of the crossing on its own grid edge sits in the tip of a
+        // needle of Sigma that ends at that E point (a cone with its apex on the edge): every
+        // plane near the apex cuts it in a loop, at every scale. Those tips are cut like the
+        // crease tips of segment_walk.h (the cut cap is a disk: Sigma's topology is kept).
+        const openvdb::Coord c0(int(std::floor(q[0])), int(std::floor(q[1])), int(std::floor(q[2])));
+        openvdb::Coord c1 = c0;
+        c1[axis] += 1;
+        const double f0 = reader.phi(c0), f1 = reader.phi(c1);
+        if ((f0 >= 0) != (f1 >= 0)) {
+            const double root = c0[axis] + f0 / (f0 - f1);
+            if (std::abs(q[axis] - root) < trim) return;
+        }
+        depth = std::abs(phi);
+        witness = q;
+    });
+    if (!witness) return std::nullopt;
+
+    // Sigma on the way from the witness to each Voronoi vertex: take the crossing farthest from
+    // the Delaunay edge (paper, CBP_VF).
+    const Point pa = job.edge.first->vertex(job.edge.second)->point();
+    const Point pb = job.edge.first->vertex(job.edge.third)->point();
+    const K::Segment_3 ab(pa, pb);
+    std::optional<Candidate> best;
+    double best_d = -1;
+    for (const auto& p : P) {
+        const auto x = octree::segment_crossings(reader, *witness, p, max_cells);
+        if (x.t.empty()) continue;
+        const Vec3d s = *witness + x.t.front() * (p - *witness);
+        const Vec3d w = field.index_to_world(s);
+        const Point pw(w[0], w[1], w[2]);
+        const double d = CGAL::squared_distance(pw, ab);
+        if (d > best_d) {
+            best_d = d;
+            const double spacing = std::sqrt(std::min(CGAL::squared_distance(pw, pa), CGAL::squared_distance(pw, pb)));
+            best = Candidate{pw, PointKind::Topology, spacing, FacetKey{{job.a, job.b, std::numeric_limits<std::uint32_t>::max()}}};
+        }
+    }
+    return best;
+}
+
+} // namespace
+
+std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::SampleField& field, int max_cells,
+                                             double trim)
+{
+    // Sigma meets only Voronoi cells of E/N points (Theorem 3, checked by grid_cell_check), so
+    // only facets dual to edges with such an endpoint can hold a loop.
+    std::vector<EdgeJob> jobs;
+    auto add = [&](const Delaunay::Edge& e) {
+        const auto va = e.first->vertex(e.second), vb = e.first->vertex(e.third);
+        if (dt.is_infinite(va) || dt.is_infinite(vb)) return;
+        if (!va->info().on_surface() && !vb->info().on_surface()) return;
+        jobs.push_back({e, std::min(va->info().id, vb->info().id), std::max(va->info().id, vb->info().id)});
+    };
+    if (first_) {
+        for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) add(*e);
+        first_ = false;
+    } else {
+        // A Voronoi facet changes only when a cell around its edge does: the edges of the cells
+        // created since the last scan, plus the facets that were violated then (their point may
+        // have been skipped as too close to another one of the batch).
+        std::vector<Cell_handle> cells;
+        for (const auto& v : touched_) {
+            cells.clear();
+            dt.incident_cells(v, std::back_inserter(cells));
+            for (const auto& c : cells)
+                for (int i = 0; i < 4; ++i)
+                    for (int j = i + 1; j < 4; ++j) add(Delaunay::Edge(c, i, j));
+        }
+        for (const auto& [va, vb] : flagged_) {
+            Cell_handle c;
+            int i, j;
+            if (dt.is_edge(va, vb, c, i, j)) add(Delaunay::Edge(c, i, j));
+        }
+        std::sort(jobs.begin(), jobs.end(),
+                  [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+        jobs.erase(std::unique(jobs.begin(), jobs.end(),
+                               [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; }),
+                   jobs.end());
+    }
+    touched_.clear();
+    flagged_.clear();
+    std::sort(jobs.begin(), jobs.end(),
+              [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+
+    std::vector<std::optional<Candidate>> found(jobs.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size(), 256), [&](const auto& r) {
+        const octree::SampleField::Reader reader(field);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) found[i] = check_facet(dt, jobs[i], field, reader, max_cells, trim);
+    });
+    std::vector<Candidate> out;
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+        if (found[i]) {
+            out.push_back(*found[i]);
+            const auto& e = jobs[i].edge;
+            flagged_.push_back({e.first->vertex(e.second), e.first->vertex(e.third)});
+        }
+    return out;
+}
+
+} // namespace isodel::mesher
