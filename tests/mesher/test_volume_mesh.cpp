@@ -137,3 +137,23 @@ TEST_CASE("volume mesh: flood-fill labels agree with the sign of F at the circum
     INFO(disagree << " of " << r.tets.tets.size() << " tets labelled against the sign of F at their circumcentre");
     CHECK(disagree == 0);
 }
+
+TEST_CASE("volume mesh checks catch broken meshes", "[mesher][volume_mesh]")
+{
+    // The acceptance checks themselves must be able to fail: break a good mesh three ways.
+    const auto grid = sphere_grid();
+    const MeshResult good = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside);
+    REQUIRE(good.tets.tets.size() > 10);
+    MeshResult flipped = good;
+    std::swap(flipped.tets.tets[5][2], flipped.tets.tets[5][3]);
+    CHECK(testing::check_volume_mesh(flipped, TetRegion::Inside).non_positive == 1);
+    MeshResult holed = good;
+    holed.tets.tets.erase(holed.tets.tets.begin() + 7);
+    holed.tets.tet_region.erase(holed.tets.tet_region.begin() + 7);
+    const auto c = testing::check_volume_mesh(holed, TetRegion::Inside);
+    CHECK_FALSE(c.boundary_ok);
+    CHECK(std::abs(c.volume_inside - c.enclosed) > 1e-9 * c.enclosed);
+    MeshResult retagged = good;
+    retagged.tets.tet_region[3] = 2;
+    CHECK_FALSE(testing::check_volume_mesh(retagged, TetRegion::Inside).tags_ok);
+}

@@ -9,7 +9,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <utility>
+#include <vector>
 #include <string>
 
 namespace isodel::testing {
@@ -47,7 +48,8 @@ inline VolumeCheck check_volume_mesh(const MeshResult& r, TetRegion region)
     c.tags_ok = t.tet_region.size() == t.tets.size();
     // Outward faces of a positively oriented tet (0,1,2,3).
     static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    std::map<std::array<std::int32_t, 3>, std::pair<int, std::array<std::int32_t, 3>>> faces; // sorted -> count, oriented
+    // Faces of inside tets as (sorted key, outward oriented); a face seen once is on the boundary.
+    std::vector<std::pair<std::array<std::int32_t, 3>, std::array<std::int32_t, 3>>> faces;
     for (std::size_t i = 0; i < t.tets.size(); ++i) {
         const auto& q = t.tets[i];
         const double v = tet_volume(t.vertices[q[0]], t.vertices[q[1]], t.vertices[q[2]], t.vertices[q[3]]);
@@ -60,16 +62,19 @@ inline VolumeCheck check_volume_mesh(const MeshResult& r, TetRegion region)
         if (reg != 1 && reg != 2) c.tags_ok = false;
         if (reg != 1) continue;
         for (const auto& f : kFaces) {
-            std::array<std::int32_t, 3> o{q[f[0]], q[f[1]], q[f[2]]}, s = o;
-            std::sort(s.begin(), s.end());
-            auto& e = faces[s];
-            e.first++;
-            e.second = o;
+            std::array<std::int32_t, 3> o{q[f[0]], q[f[1]], q[f[2]]}, k = o;
+            std::sort(k.begin(), k.end());
+            faces.emplace_back(k, o);
         }
     }
+    std::sort(faces.begin(), faces.end());
     std::vector<std::array<std::int32_t, 3>> boundary, surface;
-    for (const auto& [s, e] : faces)
-        if (e.first == 1) boundary.push_back(rotate_min_first(e.second));
+    for (std::size_t i = 0; i < faces.size();) {
+        std::size_t j = i;
+        while (j < faces.size() && faces[j].first == faces[i].first) ++j;
+        if (j - i == 1) boundary.push_back(rotate_min_first(faces[i].second));
+        i = j;
+    }
     for (const auto& tri : r.surface.triangles) surface.push_back(rotate_min_first(tri));
     std::sort(boundary.begin(), boundary.end());
     std::sort(surface.begin(), surface.end());
