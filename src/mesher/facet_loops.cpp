@@ -86,10 +86,14 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
         P.push_back(field.world_to_index({w.x(), w.y(), w.z()}));
     }
 
-    // The boundary's sign: mixed means an arc crosses the facet (edge-count test's business).
-    const bool inside = octree::phi_at(reader, P[0]) >= 0;
-    for (const auto& p : P)
-        if ((octree::phi_at(reader, p) >= 0) != inside) return std::nullopt;
+    // The boundary's signs: one sign, or an arc (mixed) that the edge-count test already checks.
+    std::vector<char> P_inside(P.size());
+    bool mixed = false;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        P_inside[i] = octree::phi_at(reader, P[i]) >= 0;
+        mixed |= P_inside[i] != P_inside[0];
+    }
+    const bool inside = P_inside[0];
 
     Vec3d N(0, 0, 0), lo = P[0], hi = P[0];
     for (std::size_t i = 0; i < P.size(); ++i) {
@@ -104,13 +108,26 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
     const Vec3d span = hi - lo;
     if ((span.x() + 1) * (span.y() + 1) * (span.z() + 1) > 8.0 * max_cells) return std::nullopt;
 
-    // The deepest point of the opposite sign.
+    // Is q cut off from the boundary part of its own sign? With one boundary sign: iff q has the
+    // other sign. With an arc: when no straight path in the facet leads from q to a Voronoi
+    // vertex of its sign without crossing Sigma (an island; a strongly curved arc can also cause
+    // this, and then the inserted point is still a point of Sigma in the facet, far from
+    // the edge, which the refinement accepts).
+    auto island = [&](const Vec3d& q, bool q_inside) {
+        if (!mixed) return q_inside != inside;
+        for (std::size_t i = 0; i < P.size(); ++i)
+            if (bool(P_inside[i]) == q_inside && octree::segment_crossings(reader, q, P[i], max_cells).t.empty())
+                return false;
+        return true;
+    };
+
+    // The deepest point of an island.
     std::optional<Vec3d> witness;
     double depth = 0;
     grid_edge_points(P, N, lo, hi, [&](int axis, const Vec3d& q) {
         const double phi = octree::phi_at(reader, q);
         const bool q_inside = phi >= 0;
-        if (q_inside == inside || std::abs(phi) <= depth) return;
+        if (std::abs(phi) <= depth) return;
         // A witness within `trim` of the crossing on its own grid edge sits in the tip of a
         // needle of Sigma that ends at that E point (a cone with its apex on the edge): every
         // plane near the apex cuts it in a loop, at every scale. Those tips are cut like the
@@ -123,6 +140,7 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
             const double root = c0[axis] + f0 / (f0 - f1);
             if (std::abs(q[axis] - root) < trim) return;
         }
+        if (!island(q, q_inside)) return;
         depth = std::abs(phi);
         witness = q;
     });

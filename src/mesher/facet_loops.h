@@ -19,8 +19,9 @@
 // the facet's boundary is inserted (the farthest such crossing from the dual Delaunay edge, as
 // the paper asks). Loops whose extremum lies strictly inside one cell are the in-cell tunnels.
 //
-// The scan only covers facets whose boundary has one sign (no arc crosses them); a loop next to
-// an arc in the same facet is not detected (known gap).
+// In a facet that an arc of Sigma also crosses, a grid-edge point counts as a witness when no
+// straight path in the facet leads from it to a Voronoi vertex of its own sign without crossing
+// Sigma.
 #include "mesher/closed_ball.h"
 #include "octree/sample_field.h"
 
