@@ -54,6 +54,11 @@ struct TetStats {
     double volume_enclosed_by_surface = 0;        ///< of M, by the divergence theorem
     double min_dihedral_deg = 0, max_dihedral_deg = 0;
     double max_radius_edge = 0;           ///< circumradius / shortest edge, worst tet
+    /// The same two figures over the tets with no vertex on M (grid-point tets: the bad
+    /// elements of DELVOLMESH all touch M, see src/mesher/tet_quality.h).
+    double min_dihedral_deg_off_surface = 0, max_radius_edge_off_surface = 0;
+    std::size_t tets_touching_surface = 0;
+    std::size_t tets_below_10deg = 0;     ///< tets with a dihedral angle under 10 degrees
     std::vector<std::size_t> dihedral_histogram; ///< 18 bins of 10 degrees, 6 angles per tet
 };
 

@@ -37,7 +37,11 @@ std::string to_json(const MeshStats& s)
           << ",\n    \"volume_inside\": " << t.volume_inside << ", \"volume_outside\": " << t.volume_outside
           << ", \"volume_enclosed_by_surface\": " << t.volume_enclosed_by_surface
           << ",\n    \"min_dihedral_deg\": " << t.min_dihedral_deg << ", \"max_dihedral_deg\": " << t.max_dihedral_deg
-          << ", \"max_radius_edge\": " << t.max_radius_edge << ",\n    \"dihedral_histogram_10deg\": [";
+          << ", \"max_radius_edge\": " << t.max_radius_edge << ", \"tets_below_10deg\": " << t.tets_below_10deg
+          << ",\n    \"tets_touching_surface\": " << t.tets_touching_surface
+          << ", \"min_dihedral_deg_off_surface\": " << t.min_dihedral_deg_off_surface
+          << ", \"max_radius_edge_off_surface\": " << t.max_radius_edge_off_surface
+          << ",\n    \"dihedral_histogram_10deg\": [";
         for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
         o << "]}";
     }

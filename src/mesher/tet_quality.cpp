@@ -34,7 +34,7 @@ double enclosed_volume(const SurfaceMesh& mesh)
     return v;
 }
 
-void measure_tet_quality(const TetMesh& mesh, TetStats& st)
+void measure_tet_quality(const TetMesh& mesh, std::size_t surface_vertices, TetStats& st)
 {
     st.vertices = mesh.vertices.size();
     st.tets_inside = st.tets_outside = 0;
@@ -42,6 +42,9 @@ void measure_tet_quality(const TetMesh& mesh, TetStats& st)
     st.min_dihedral_deg = mesh.tets.empty() ? 0 : 180;
     st.max_dihedral_deg = 0;
     st.max_radius_edge = 0;
+    st.min_dihedral_deg_off_surface = 180;
+    st.max_radius_edge_off_surface = 0;
+    st.tets_touching_surface = st.tets_below_10deg = 0;
     st.dihedral_histogram.assign(18, 0);
     static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                                          {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
@@ -51,7 +54,7 @@ void measure_tet_quality(const TetMesh& mesh, TetStats& st)
         const double vol = signed_tet_volume(*p[0], *p[1], *p[2], *p[3]);
         (mesh.tet_region[t] == 1 ? st.volume_inside : st.volume_outside) += vol;
         (mesh.tet_region[t] == 1 ? st.tets_inside : st.tets_outside) += 1;
-        double shortest = INFINITY;
+        double shortest = INFINITY, tet_min = 180;
         for (const auto& e : kEdges) {
             // Dihedral angle at edge (e0, e1): the angle between the normals e x (p2 - p0) and
             // e x (p3 - p0), a quarter turn about e of the two faces' in-plane directions.
@@ -61,6 +64,7 @@ void measure_tet_quality(const TetMesh& mesh, TetStats& st)
             const V3 n2 = cross(ev, sub(*p[e[3]], *p[e[0]]));
             const double c = std::clamp(dot(n1, n2) / (norm(n1) * norm(n2)), -1.0, 1.0);
             const double deg = std::acos(c) * 180.0 / kPi;
+            tet_min = std::min(tet_min, deg);
             st.min_dihedral_deg = std::min(st.min_dihedral_deg, deg);
             st.max_dihedral_deg = std::max(st.max_dihedral_deg, deg);
             st.dihedral_histogram[std::min<std::size_t>(17, std::size_t(deg / 10.0))]++;
@@ -72,7 +76,17 @@ void measure_tet_quality(const TetMesh& mesh, TetStats& st)
         const double den = 2 * dot(a, bc);
         V3 r;
         for (int k = 0; k < 3; ++k) r[k] = (dot(a, a) * bc[k] + dot(b, b) * ca[k] + dot(c, c) * ab[k]) / den;
-        st.max_radius_edge = std::max(st.max_radius_edge, norm(r) / shortest);
+        const double re = norm(r) / shortest;
+        st.max_radius_edge = std::max(st.max_radius_edge, re);
+        st.tets_below_10deg += tet_min < 10;
+        bool touches = false;
+        for (int j = 0; j < 4; ++j) touches |= std::size_t(mesh.tets[t][j]) < surface_vertices;
+        if (touches) {
+            ++st.tets_touching_surface;
+        } else {
+            st.min_dihedral_deg_off_surface = std::min(st.min_dihedral_deg_off_surface, tet_min);
+            st.max_radius_edge_off_surface = std::max(st.max_radius_edge_off_surface, re);
+        }
     }
 }
 

@@ -151,7 +151,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
         mesh.tet_region.push_back(t.region);
     }
     mesh.triangles = surface.triangles;
-    measure_tet_quality(mesh, st);
+    measure_tet_quality(mesh, surface.vertices.size(), st);
     st.volume_enclosed_by_surface = enclosed_volume(surface);
     return mesh;
 }

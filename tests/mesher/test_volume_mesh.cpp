@@ -76,6 +76,9 @@ TEST_CASE("volume mesh: sphere, inside region", "[mesher][volume_mesh]")
     CHECK(std::abs(r.stats.tets.volume_inside - ball) < 4 * M_PI * R * R * 0.25);
     CHECK(r.stats.tets.min_dihedral_deg > 0);
     CHECK(r.stats.tets.max_dihedral_deg < 180);
+    // Tets of grid points only are pieces of lattice cubes (src/mesher/tet_quality.h).
+    CHECK(r.stats.tets.min_dihedral_deg_off_surface >= 35.26);
+    CHECK(r.stats.tets.max_radius_edge_off_surface <= 0.8661);
     CHECK(r.stats.seconds.count("tets") == 1);
     CHECK(to_json(r.stats).find("\"min_dihedral_deg\"") != std::string::npos);
 }

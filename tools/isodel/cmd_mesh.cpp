@@ -99,7 +99,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                           << t.tets_inside << " inside + " << t.tets_outside << " outside tetrahedra; volume inside "
                           << t.volume_inside << ", enclosed by the surface " << t.volume_enclosed_by_surface
                           << ")\n  dihedral angles " << t.min_dihedral_deg << " .. " << t.max_dihedral_deg
-                          << " deg, max radius-edge ratio " << t.max_radius_edge << "\n  dihedral histogram (10 deg bins):";
+                          << " deg, max radius-edge ratio " << t.max_radius_edge << "; " << t.tets_below_10deg
+                          << " tets under 10 deg\n  away from the surface (tets with no surface vertex): dihedral >= "
+                          << t.min_dihedral_deg_off_surface << " deg, radius-edge <= " << t.max_radius_edge_off_surface
+                          << "\n  dihedral histogram (10 deg bins):";
                 for (auto n : t.dihedral_histogram) std::cerr << ' ' << n;
                 std::cerr << "\n";
             }
