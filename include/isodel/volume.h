@@ -44,6 +44,10 @@ struct Volume {
     Inside default_inside = Inside::Above; ///< level set grid class -> Below; everything else Above
     openvdb::CoordBBox lattice;   ///< index box of the sample lattice
     float value_min = 0, value_max = 0;    ///< over the lattice's samples
+    /// > 0 for an isodel adaptive file (`isodel decimate`): its number of levels; `grid` then holds
+    /// the adaptive interpolant resampled exactly on the finest grid (include/isodel/adaptive.h).
+    int adaptive_levels = 0;
+    int adaptive_k = 0;
 };
 
 /// Reads \p path by extension (.vdb, .mrc/.map/.ccp4, .inr/.inr.gz, else raw with \p opt.raw).

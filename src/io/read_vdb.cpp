@@ -3,6 +3,7 @@
 #include "dense_volume.h"
 #include "readers.h"
 
+#include <isodel/adaptive.h>
 #include <isodel/errors.h>
 
 #include <algorithm>
@@ -46,6 +47,24 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
 {
     file_size_or_throw(path);
     openvdb::initialize(); // idempotent; library users may not have called it
+    // An isodel adaptive file (octree/, `isodel decimate`): F is the adaptive interpolant, which
+    // the finest-grid resampling reproduces exactly (trilinear on every sub-cell), so every
+    // command meshes and verifies the decimated F (Property IV) through the one uniform path.
+    if (const auto info = adaptive_info(path); info && (opt.grid_name.empty() || opt.grid_name == info->sample_grid)) {
+        const AdaptiveVolume av = load_adaptive(path);
+        Volume vol;
+        vol.path = path;
+        vol.format = "vdb";
+        vol.grid = resample(av);
+        vol.grid->setTransform(av.samples->transform().copy());
+        vol.grid->setGridClass(av.samples->getGridClass());
+        vol.grid->setName(av.samples->getName());
+        vol.adaptive_levels = info->levels;
+        vol.adaptive_k = info->k;
+        vol.default_inside = vol.grid->getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above;
+        finish_volume(vol);
+        return vol;
+    }
     openvdb::io::File file(path);
     try {
         file.open(/*delayLoad=*/false);
