@@ -43,6 +43,32 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
         if (!it.isVoxelValue()) consider(*it);
         else { consider(*it); }
     }
+    // Bilinear saddles of cell faces exactly at v (e.g. corners (1,-1,-1,1) at v = 0) make Sigma
+    // non-manifold just like a sample at v; they follow the same rule (Sigma is the limit from
+    // below), and saddles just below v bound the shift like samples do. Only faces whose corners
+    // straddle v can hold one. (Saddles inside a cell are not considered.)
+    {
+        auto acc = grid_->getConstAccessor();
+        for (auto it = grid_->cbeginValueOn(); it; ++it) {
+            if (!it.isVoxelValue()) continue;
+            const Coord c = it.getCoord();
+            const double a = *it;
+            for (int axis = 0; axis < 3; ++axis) {
+                Coord e1(0, 0, 0), e2(0, 0, 0);
+                e1[(axis + 1) % 3] = 1;
+                e2[(axis + 2) % 3] = 1;
+                const double b = acc.getValue(c + e1), cc = acc.getValue(c + e2), d = acc.getValue(c + e1 + e2);
+                if (std::min({a, b, cc, d}) > isovalue || std::max({a, b, cc, d}) < isovalue) continue;
+                const double den = a - b - cc + d;
+                if (den == 0) continue;
+                const double u = (a - cc) / den, w = (a - b) / den;
+                if (!(u > 0 && u < 1 && w > 0 && w < 1)) continue;
+                const double num = a * d - b * cc;
+                if (num == isovalue * den) tie = true;
+                else if (num / den < isovalue) gap = std::min(gap, isovalue - num / den);
+            }
+        }
+    }
     vmin_ = vmin;
     vmax_ = vmax;
     if (!(isovalue > vmin && isovalue < vmax) && !(tie && vmin < vmax)) {

@@ -10,10 +10,12 @@
 ///
 /// Rules (see include/isodel/mesh.h):
 ///  - Ties: a sample equal to v counts as above v; Sigma is the limit of {F = v - d}, d -> 0+.
-///    When some sample equals v we mesh v* = v - d with
-///        d = min( gap/2, 1e-3 * (value range) ),   gap = min{ v - f : samples f < v },
-///    the largest d that keeps every other sample on its side; otherwise v* = v. So E points
-///    never coincide with grid points.
+///    When some sample, or the bilinear saddle of some cell face, equals v we mesh v* = v - d with
+///        d = min( gap/2, 1e-3 * (value range) ),
+///        gap = min{ v - f : samples and face saddle values f < v },
+///    the largest d that keeps every other sample and face saddle on its side; otherwise v* = v.
+///    So E points never coincide with grid points, and two blobs touching at a face saddle
+///    at v are one component. (Saddles inside a cell at exactly v are not detected.)
 ///  - Domain: samples inside the active bounding box grown by one voxel are read through the grid
 ///    (inactive voxels give the background or tile value); beyond it every sample is "outside"
 ///    (phi = -outside_magnitude), so Sigma is a union of closed surfaces inside domain().expand(1).

@@ -54,6 +54,67 @@ void grid_edge_points(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& 
     }
 }
 
+/// Extrema of F along the lines where the facet's plane crosses grid faces, inside the facet.
+/// On a face F is bilinear, so along such a line it is a quadratic per face square: three
+/// values give it exactly. A tube of Sigma lying in a grid face (e.g. two blobs joined at a face
+/// saddle) has the extremum of its cross-section there, not on a grid edge.
+template <class Visit>
+void grid_face_extrema(const octree::SampleField::Reader& reader, const std::vector<Vec3d>& P, const Vec3d& N,
+                       const Vec3d& lo, const Vec3d& hi, Visit&& visit)
+{
+    const double c = N.dot(P[0]);
+    for (int d = 0; d < 3; ++d) {
+        const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
+        Vec3d ed(0, 0, 0);
+        ed[d] = 1;
+        const Vec3d D = N.cross(ed); // the line's direction: in both planes
+        if (D.lengthSqr() < 1e-18 * N.lengthSqr()) continue; // facet parallel to these faces
+        for (int u = int(std::ceil(lo[d])); u <= int(std::floor(hi[d])); ++u) {
+            // A point of the line: x_d = u, and the facet plane, solved along the larger of e1, e2.
+            Vec3d P0(0, 0, 0);
+            P0[d] = u;
+            const int k = std::abs(N[e1]) >= std::abs(N[e2]) ? e1 : e2;
+            const int m = k == e1 ? e2 : e1;
+            P0[m] = 0.5 * (lo[m] + hi[m]);
+            P0[k] = (c - N[d] * u - N[m] * P0[m]) / N[k];
+            // Clip to the bounding box in e1, e2; breakpoints where the line crosses grid lines.
+            double t0 = -1e300, t1 = 1e300;
+            for (int a : {e1, e2}) {
+                if (D[a] == 0) {
+                    if (P0[a] < lo[a] || P0[a] > hi[a]) t0 = 1e300;
+                    continue;
+                }
+                const double ta = (lo[a] - P0[a]) / D[a], tb = (hi[a] - P0[a]) / D[a];
+                t0 = std::max(t0, std::min(ta, tb));
+                t1 = std::min(t1, std::max(ta, tb));
+            }
+            if (!(t0 < t1)) continue;
+            std::vector<double> ts{t0, t1};
+            for (int a : {e1, e2}) {
+                if (D[a] == 0) continue;
+                const double xa = P0[a] + t0 * D[a], xb = P0[a] + t1 * D[a];
+                for (int g = int(std::ceil(std::min(xa, xb))); g <= int(std::floor(std::max(xa, xb))); ++g)
+                    ts.push_back((g - P0[a]) / D[a]);
+            }
+            std::sort(ts.begin(), ts.end());
+            for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+                const double h = 0.5 * (ts[i + 1] - ts[i]);
+                if (!(h > 1e-12)) continue;
+                const double tm = ts[i] + h;
+                const Vec3d pm = P0 + tm * D;
+                const double f0 = octree::phi_at(reader, P0 + ts[i] * D), fm = octree::phi_at(reader, pm),
+                             f1 = octree::phi_at(reader, P0 + ts[i + 1] * D);
+                const double alpha = (f0 - 2 * fm + f1) / (2 * h * h), beta = (f1 - f0) / (2 * h);
+                if (alpha == 0) continue;
+                const double x = -beta / (2 * alpha);
+                if (!(std::abs(x) < h)) continue;
+                const Vec3d q = pm + x * D;
+                if (strictly_inside(P, N, q)) visit(q);
+            }
+        }
+    }
+}
+
 std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, const octree::SampleField& field,
                                      const octree::SampleField::Reader& reader, int max_cells, double trim)
 {
@@ -141,6 +202,12 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
             if (std::abs(q[axis] - root) < trim) return;
         }
         if (!island(q, q_inside)) return;
+        depth = std::abs(phi);
+        witness = q;
+    });
+    grid_face_extrema(reader, P, N, lo, hi, [&](const Vec3d& q) {
+        const double phi = octree::phi_at(reader, q);
+        if (std::abs(phi) <= depth || !island(q, phi >= 0)) return;
         depth = std::abs(phi);
         witness = q;
     });

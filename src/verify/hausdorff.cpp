@@ -141,7 +141,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
 
     // ---- M -> Sigma ----
     constexpr int kLocalR = 8;
-    constexpr std::size_t kFallbackBudget = 20000;
+    constexpr std::size_t kFallbackBudget = 2000000; // local searches are cheap (a few cells each)
     std::atomic<std::size_t> fallbacks{0}, unresolved{0};
     double spacing = 0.0;
     std::mutex spacing_mutex;
