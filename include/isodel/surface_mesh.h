@@ -36,6 +36,10 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh);
 /// write_surface_mesh. \throw InvalidInput unknown extension (names the file); \throw IoError.
 void write_tet_mesh(const std::string& path, const TetMesh& mesh);
 
+/// Reads a Medit .mesh tetrahedral mesh (vertices, triangles, tetrahedra with region refs).
+/// \throw InvalidInput not .mesh, malformed (message names the file); IoError unreadable.
+TetMesh read_tet_mesh(const std::string& path);
+
 /// True when \p path ends in an extension write_tet_mesh accepts.
 bool is_tet_mesh_path(const std::string& path);
 

@@ -110,6 +110,26 @@ struct DelaunayReport {
     bool passed = false;
 };
 
+/// isodel verify --tets: the tetrahedral mesh against M (issue 6's promises, checked from the file).
+struct TetReport {
+    bool checked = false;
+    std::size_t vertices = 0, tets = 0;
+    std::size_t inverted = 0;          ///< not positively oriented (exact orientation test)
+    std::size_t degenerate = 0;        ///< zero volume (coplanar corners)
+    std::size_t unknown_region = 0;    ///< region tag other than 1 (inside) or 2 (outside)
+    std::size_t inside_tets = 0, outside_tets = 0;
+    double inside_volume = 0, outside_volume = 0; ///< world units^3
+    double enclosed_volume = 0;        ///< volume enclosed by M (divergence theorem)
+    double volume_rel_error = 0;       ///< |inside - enclosed| / enclosed
+    /// Boundary of the inside region (faces of exactly one inside tet, outward) against M's
+    /// triangles (matched by exact vertex position): faces of one but not the other.
+    std::size_t boundary_faces = 0, boundary_not_in_mesh = 0, mesh_not_in_boundary = 0;
+    std::size_t unmatched_mesh_vertices = 0; ///< M vertices with no tet vertex at that position
+    double min_dihedral_deg = 0, max_dihedral_deg = 0;
+    std::array<std::size_t, 18> dihedral_histogram{}; ///< 10-degree bins of all dihedral angles
+    bool passed = false;
+};
+
 struct QualityReport {
     /// Histogram of the smallest angle of each triangle, 6 bins of 10 degrees [0,10),...,[50,60].
     std::array<std::size_t, 6> min_angle_histogram{};
@@ -129,7 +149,7 @@ struct VerifyReport {
     HausdorffReport hausdorff;
     DelaunayReport delaunay;
     QualityReport quality;
-    bool tets_checked = false;               ///< --tets: not implemented yet
+    TetReport tets;                          ///< filled by verify_tets (--tets)
     std::vector<std::string> notes;
     double seconds = 0.0;
 
@@ -137,7 +157,8 @@ struct VerifyReport {
     bool topology_ok() const;
     bool hausdorff_ok() const { return !hausdorff.checked || hausdorff.passed; }
     bool delaunay_ok() const { return !delaunay.checked || delaunay.passed; }
-    bool passed() const { return mesh_ok() && topology_ok() && hausdorff_ok() && delaunay_ok(); }
+    bool tets_ok() const { return !tets.checked || tets.passed; }
+    bool passed() const { return mesh_ok() && topology_ok() && hausdorff_ok() && delaunay_ok() && tets_ok(); }
     std::string to_json() const;
     std::string summary() const; ///< readable multi-line text
 };
@@ -146,6 +167,12 @@ struct VerifyReport {
 /// \throw InvalidInput bad options, empty grid, isovalue outside the range, non-affine transform
 VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& mesh,
                             const VerifyOptions& options);
+
+/// Checks a tetrahedral mesh against the surface mesh \p mesh: every tet positively oriented
+/// (exact predicate), region tags 1/2, the inside region's boundary equal to M's triangles with
+/// the same orientation, inside volume equal to the volume M encloses (1e-9 relative), and the
+/// dihedral angles. Independent of the mesher: only the two meshes are used.
+TetReport verify_tets(const TetMesh& tets, const SurfaceMesh& mesh);
 
 /// The reference topology alone (check 1), e.g. to compare with a data set's expected topology.
 ReferenceTopologyReport reference_topology(const openvdb::FloatGrid& grid, double isovalue,

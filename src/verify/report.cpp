@@ -100,7 +100,25 @@ std::string VerifyReport::to_json() const
     for (std::size_t i = 0; i < q.min_angle_histogram.size(); ++i) o << (i ? ", " : "") << q.min_angle_histogram[i];
     o << "], \"min_angle_deg\": " << num(q.min_angle_deg) << ", \"mean_min_angle_deg\": " << num(q.mean_min_angle_deg)
       << ", \"max_radius_edge\": " << num(q.max_radius_edge) << ", \"mean_radius_edge\": " << num(q.mean_radius_edge) << "}";
-    o << ",\n  \"tets_checked\": " << yn(tets_checked) << ",\n  \"notes\": [";
+    const auto& t = tets;
+    o << ",\n  \"tets\": {\"checked\": " << yn(t.checked);
+    if (t.checked) {
+        o << ", \"passed\": " << yn(t.passed) << ", \"vertices\": " << t.vertices << ", \"tets\": " << t.tets
+          << ", \"inverted\": " << t.inverted << ", \"degenerate\": " << t.degenerate
+          << ", \"unknown_region\": " << t.unknown_region << ", \"inside_tets\": " << t.inside_tets
+          << ", \"outside_tets\": " << t.outside_tets << ", \"inside_volume\": " << num(t.inside_volume)
+          << ", \"outside_volume\": " << num(t.outside_volume) << ", \"enclosed_volume\": " << num(t.enclosed_volume)
+          << ", \"volume_rel_error\": " << num(t.volume_rel_error) << ", \"boundary_faces\": " << t.boundary_faces
+          << ", \"boundary_not_in_mesh\": " << t.boundary_not_in_mesh
+          << ", \"mesh_not_in_boundary\": " << t.mesh_not_in_boundary
+          << ", \"unmatched_mesh_vertices\": " << t.unmatched_mesh_vertices
+          << ", \"min_dihedral_deg\": " << num(t.min_dihedral_deg) << ", \"max_dihedral_deg\": " << num(t.max_dihedral_deg)
+          << ", \"dihedral_histogram_10deg\": [";
+        for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
+        o << "]";
+    }
+    o << "}";
+    o << ",\n  \"notes\": [";
     for (std::size_t i = 0; i < notes.size(); ++i) o << (i ? ", " : "") << str(notes[i]);
     o << "],\n  \"seconds\": " << num(seconds) << "\n}\n";
     return o.str();
@@ -141,6 +159,16 @@ std::string VerifyReport::summary() const
     o << "quality: min angle " << num(quality.min_angle_deg) << " deg (mean " << num(quality.mean_min_angle_deg)
       << "), radius-edge max " << num(quality.max_radius_edge) << " (mean " << num(quality.mean_radius_edge) << ")\n";
     for (const auto& n : notes) o << "note: " << n << "\n";
+    if (tets.checked) {
+        const auto& t = tets;
+        o << "[" << verdict(t.passed) << "] tetrahedra: " << t.tets << " (" << t.inside_tets << " inside, "
+          << t.outside_tets << " outside), " << t.inverted << " inverted, " << t.degenerate << " flat, "
+          << t.unknown_region << " untagged; inside boundary " << t.boundary_faces << " faces, "
+          << t.boundary_not_in_mesh << " not in M, " << t.mesh_not_in_boundary << " of M missing; inside volume "
+          << num(t.inside_volume) << " vs enclosed by M " << num(t.enclosed_volume) << " (rel. "
+          << num(t.volume_rel_error) << "); dihedral " << num(t.min_dihedral_deg) << " - " << num(t.max_dihedral_deg)
+          << " deg\n";
+    }
     o << (passed() ? "VERIFIED" : "NOT VERIFIED") << " (" << num(seconds) << " s)\n";
     return o.str();
 }

@@ -60,3 +60,26 @@ TEST_CASE("mesh --tets: an unknown extension is refused before meshing", "[cli][
     CHECK(r.err.find(".mesh, .vtu or .msh") != std::string::npos);
     CHECK(list_dir(tmp.path()).empty()); // nothing written: not even the surface
 }
+
+TEST_CASE("verify --tets: isodel's .mesh verifies; a .vtu is refused with the file named", "[cli][tets][verify]")
+{
+    TempDir tmp;
+    const std::string surf = tmp / "s.ply", tets = tmp / "t.mesh";
+    const RunResult m = run_isodel("mesh " + shell_quote(blobs()) + " -o " + shell_quote(surf) + " --iso 0.5 --tets " +
+                                       shell_quote(tets) + " --region both",
+                                   tmp.path());
+    REQUIRE(m.status == 0);
+    const RunResult v = run_isodel("verify " + shell_quote(blobs()) + " --iso 0.5 --mesh " + shell_quote(surf) +
+                                       " --tets " + shell_quote(tets) + " --eps-voxels 0.5",
+                                   tmp.path());
+    INFO(v.out << v.err);
+    CHECK(v.status == 0);
+    CHECK(v.out.find("[PASS] tetrahedra:") != std::string::npos);
+
+    const std::string vtu = tmp / "t.vtu";
+    const RunResult bad = run_isodel("verify " + shell_quote(blobs()) + " --iso 0.5 --mesh " + shell_quote(surf) +
+                                         " --tets " + shell_quote(vtu),
+                                     tmp.path());
+    CHECK(bad.status == 2);
+    CHECK(bad.err.find(vtu) != std::string::npos);
+}

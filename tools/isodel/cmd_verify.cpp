@@ -9,6 +9,7 @@
 #include "../../src/io/atomic_file.h" // internal, exported by libisodel
 
 #include <iostream>
+#include <optional>
 #include <memory>
 
 namespace isodel::cli {
@@ -36,15 +37,16 @@ void add_verify_command(CLI::App& app, int& exit_code)
     cmd->add_option("--refine", a->refine, "Reference topology refinement R (R and 2R are compared)");
     cmd->add_option("--max-refine", a->max_refine, "Keep doubling R up to this while the topology disagrees");
     cmd->add_option("--sigma-refine", a->sigma_refine, "Sub-lattice refinement for sampling Sigma (0 = auto)");
-    cmd->add_option("--tets", a->tets, "Tetrahedral mesh to verify (not implemented yet)");
+    cmd->add_option("--tets", a->tets, "Tetrahedral mesh (.mesh) to verify against --mesh: orientation, regions, "
+                                       "boundary equal to M, volumes, dihedral angles");
     cmd->add_flag("--no-delaunay", a->no_delaunay, "Skip the Delaunay conformity check");
     cmd->add_flag("--no-self-intersections", a->no_self, "Skip the self-intersection check");
     cmd->add_flag("--strict-topology", a->strict, "An undetermined reference topology is a failure");
     cmd->add_flag("-q,--quiet", a->quiet, "Print only the final verdict");
     cmd->callback([a, &exit_code] {
-        if (!a->tets.empty()) throw InvalidInput("--tets: tetrahedral mesh verification is not implemented yet");
         const Volume vol = read_input(a->in);
         const SurfaceMesh mesh = read_surface_mesh(a->mesh);
+        const std::optional<TetMesh> tets = a->tets.empty() ? std::nullopt : std::optional<TetMesh>(read_tet_mesh(a->tets));
         VerifyOptions opt;
         opt.isovalue = a->iso;
         if (!a->inside.empty()) opt.inside = a->inside == "above" ? Inside::Above : Inside::Below;
@@ -57,7 +59,8 @@ void add_verify_command(CLI::App& app, int& exit_code)
         opt.check_delaunay = !a->no_delaunay;
         opt.check_self_intersections = !a->no_self;
         opt.require_determined_topology = a->strict;
-        const VerifyReport rep = verify_surface(*vol.grid, mesh, opt);
+        VerifyReport rep = verify_surface(*vol.grid, mesh, opt);
+        if (tets) rep.tets = verify_tets(*tets, mesh);
         if (!a->json.empty()) {
             io::AtomicFile out(a->json);
             out.stream() << rep.to_json();
