@@ -170,6 +170,12 @@ std::string soup_topology(const std::vector<Tri>& tris)
     for (const auto& t : tris) chi[find(t[0])] += 1;
     std::vector<long long> genera;
     for (const auto& [r, c] : chi) genera.push_back((2 - c) / 2);
+    if (nonmanifold) { // the genus is meaningless: report chi = V - E + F of the whole soup
+        long long total = 0;
+        for (const auto& [r, c] : chi) total += c;
+        return std::to_string(genera.size()) + " comp, not a manifold (" + std::to_string(nonmanifold) +
+               " edges not in exactly 2 triangles), chi " + std::to_string(total);
+    }
     std::sort(genera.begin(), genera.end());
     std::string s = std::to_string(genera.size()) + " comp";
     if (genera.size() <= 8) {
@@ -180,7 +186,6 @@ std::string soup_topology(const std::vector<Tri>& tris)
         for (auto g : genera) nz += g != 0, sum += g;
         s += ", " + std::to_string(nz) + " with genus>0 (sum " + std::to_string(sum) + ")";
     }
-    if (nonmanifold) s += ", " + std::to_string(nonmanifold) + " non-manifold edges";
     return s;
 }
 
@@ -597,7 +602,7 @@ int main(int argc, char** argv)
     std::printf("isodel/this = median time of isodel 2thr (isodel+tets 2thr for Mesh_3 tets) / this row's; < 1: isodel faster.\n"
                 "DT(M+C) = CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insert, of isodel's surface vertices M\n"
                 "          + the grid corners of the cells Sigma crosses (a stand-in for E u G u N, which MeshResult does\n"
-                "          not expose; 'verts' of isodel rows' notes give isodel's own |E|+|G|+|N|).\n"
+                "          not expose; the isodel rows' notes give isodel's own |E|+|G|+|N|).\n"
                 "Peak MiB = the forked child's whole ru_maxrss (volume included). VDB volumeToMesh runs on TBB's default threads.\n");
 
     struct Totals {
@@ -647,7 +652,7 @@ int main(int argc, char** argv)
                 if (s.have) std::snprintf(mbuf, sizeof mbuf, "%.0f", s.mib);
                 else std::snprintf(mbuf, sizeof mbuf, "-");
                 const double num = m == MT ? isot : iso2;
-                std::string ratio = (m == I2) ? "1" : (m == IT) ? "-" : fmt_ratio(num, s.have ? s.secs : NAN);
+                std::string ratio = (m == I2) ? (s.have ? "1" : "-") : (m == IT) ? "-" : fmt_ratio(num, s.have ? s.secs : NAN);
                 if (!s.have && s.timed_out && num > 0) ratio = "<" + fmt_ratio(num, double(timeout));
                 std::printf("%-30s %-11s %-17s %9s %8s %9s %9s %9s %8s  %s\n", ds.file.c_str(), ds.dims.c_str(), kLabel[m],
                             tbuf, mbuf, s.have ? fmt_count(s.last.vertices).c_str() : "-",
