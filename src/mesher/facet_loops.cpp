@@ -270,16 +270,15 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
             int i, j;
             if (dt.is_edge(va, vb, c, i, j)) add(Delaunay::Edge(c, i, j));
         }
-        std::sort(jobs.begin(), jobs.end(),
-                  [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
-        jobs.erase(std::unique(jobs.begin(), jobs.end(),
-                               [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; }),
-                   jobs.end());
     }
     touched_.clear();
     flagged_.clear();
+    // One job per edge (an edge is seen from several new cells), in id order.
     std::sort(jobs.begin(), jobs.end(),
               [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+    jobs.erase(std::unique(jobs.begin(), jobs.end(),
+                           [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; }),
+               jobs.end());
 
     std::vector<std::optional<Candidate>> found(jobs.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size(), 256), [&](const auto& r) {

@@ -25,9 +25,7 @@ TEST_CASE("decimated volumes mesh with guarantees I-III against their resampled 
         return;
     }
     for (const std::string file : {"ct/skull_2.9.vdb", "protein/1hpv_molmap_6A_2A.vdb"}) {
-        const minijson::Value* entry = nullptr;
-        for (const auto& e : manifest.arr)
-            if (e["file"].as_string() == file) entry = &e;
+        const minijson::Value* entry = testing::manifest_entry(manifest, file);
         REQUIRE(entry != nullptr);
         const auto& e = *entry;
         auto grid = testing::read_vdb(testing::shared_data() + "/" + file, e["grid_name"].as_string());

@@ -23,9 +23,7 @@ void mesh_corpus(const std::vector<std::string>& files)
         return;
     }
     for (const std::string& file : files) {
-        const minijson::Value* entry = nullptr;
-        for (const auto& e : manifest.arr)
-            if (e["file"].as_string() == file) entry = &e;
+        const minijson::Value* entry = testing::manifest_entry(manifest, file);
         REQUIRE(entry != nullptr);
         const auto& e = *entry;
         auto grid = testing::read_vdb(testing::shared_data() + "/" + file, e["grid_name"].as_string());

@@ -46,6 +46,14 @@ inline std::vector<int> expected_genera(const minijson::Value& entry)
     return g;
 }
 
+/// The manifest entry of \p file, or null.
+inline const minijson::Value* manifest_entry(const minijson::Value& manifest, const std::string& file)
+{
+    for (const auto& e : manifest.arr)
+        if (e["file"].as_string() == file) return &e;
+    return nullptr;
+}
+
 inline Inside inside_of(const minijson::Value& entry)
 {
     return entry["inside"].as_string() == "below" ? Inside::Below : Inside::Above;

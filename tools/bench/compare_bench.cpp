@@ -35,6 +35,8 @@
 #include "octree/sample_field.h"
 #include "octree/segment_walk.h"
 
+#include "bench_support.h"
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Labeled_mesh_domain_3.h>
@@ -71,6 +73,10 @@
 #include <vector>
 
 namespace {
+
+using isodel::bench::isodel_topology;
+using isodel::bench::soup_topology;
+using isodel::bench::split;
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Domain = CGAL::Labeled_mesh_domain_3<K>;
@@ -118,92 +124,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0)
 void copy_str(char* dst, std::size_t n, const std::string& s)
 {
     std::snprintf(dst, n, "%s", s.c_str());
-}
-
-std::vector<std::string> split(const std::string& s)
-{
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string x;
-    while (std::getline(ss, x, ','))
-        if (!x.empty()) out.push_back(x);
-    return out;
-}
-
-/// Components and genera of a triangle soup given by vertex ids: union-find over vertices,
-/// chi = V - E + F per component, genus = (2 - chi) / 2; counts edges not shared by exactly two
-/// triangles (then the genus is not meaningful: reported as such).
-std::string soup_topology(const std::vector<Tri>& tris)
-{
-    std::unordered_map<std::int64_t, std::int64_t> parent;
-    std::function<std::int64_t(std::int64_t)> find = [&](std::int64_t x) {
-        while (parent[x] != x) {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        return x;
-    };
-    for (const auto& t : tris)
-        for (auto v : t)
-            if (!parent.count(v)) parent[v] = v;
-    for (const auto& t : tris) {
-        const auto a = find(t[0]);
-        for (int j = 1; j < 3; ++j) {
-            const auto b = find(t[j]);
-            if (a != b) parent[b] = a;
-        }
-    }
-    std::map<std::pair<std::int64_t, std::int64_t>, int> edges;
-    for (const auto& t : tris)
-        for (int j = 0; j < 3; ++j) {
-            auto a = t[j], b = t[(j + 1) % 3];
-            if (a > b) std::swap(a, b);
-            ++edges[{a, b}];
-        }
-    std::map<std::int64_t, long long> chi; // root -> V - E + F
-    for (auto& [v, p] : parent) chi[find(v)] += 1;
-    long long nonmanifold = 0;
-    for (const auto& [e, n] : edges) {
-        chi[find(e.first)] -= 1;
-        if (n != 2) ++nonmanifold;
-    }
-    for (const auto& t : tris) chi[find(t[0])] += 1;
-    std::vector<long long> genera;
-    for (const auto& [r, c] : chi) genera.push_back((2 - c) / 2);
-    if (nonmanifold) { // the genus is meaningless: report chi = V - E + F of the whole soup
-        long long total = 0;
-        for (const auto& [r, c] : chi) total += c;
-        return std::to_string(genera.size()) + " comp, not a manifold (" + std::to_string(nonmanifold) +
-               " edges not in exactly 2 triangles), chi " + std::to_string(total);
-    }
-    std::sort(genera.begin(), genera.end());
-    std::string s = std::to_string(genera.size()) + " comp";
-    if (genera.size() <= 8) {
-        s += ", genus";
-        for (auto g : genera) s += " " + std::to_string(g);
-    } else {
-        long long nz = 0, sum = 0;
-        for (auto g : genera) nz += g != 0, sum += g;
-        s += ", " + std::to_string(nz) + " with genus>0 (sum " + std::to_string(sum) + ")";
-    }
-    return s;
-}
-
-std::string isodel_topology(const isodel::MeshStats& st)
-{
-    std::vector<int> g;
-    for (const auto& c : st.components) g.push_back(c.genus);
-    std::sort(g.begin(), g.end());
-    std::string s = std::to_string(g.size()) + " comp";
-    if (g.size() <= 8) {
-        s += ", genus";
-        for (auto x : g) s += " " + std::to_string(x);
-    } else {
-        long long nz = 0, sum = 0;
-        for (auto x : g) nz += x != 0, sum += x;
-        s += ", " + std::to_string(nz) + " with genus>0 (sum " + std::to_string(sum) + ")";
-    }
-    return s;
 }
 
 std::string phases(const isodel::MeshStats& st)

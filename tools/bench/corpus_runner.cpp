@@ -12,6 +12,7 @@
 #include <isodel/volume.h>
 
 #include "../../src/verify/mini_json.h"
+#include "bench_support.h"
 
 #include <openvdb/openvdb.h>
 
@@ -26,21 +27,13 @@
 
 namespace {
 
+using isodel::bench::split;
+
 // The shared data sit next to the repository: <repo>/../shared/data.
 std::string default_data()
 {
     std::string f = __FILE__;
     return f.substr(0, f.rfind("/tools/bench/")) + "/../shared/data";
-}
-
-std::vector<std::string> split(const std::string& s)
-{
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string x;
-    while (std::getline(ss, x, ','))
-        if (!x.empty()) out.push_back(x);
-    return out;
 }
 
 const char* verdict(bool checked, bool ok) { return !checked ? "-" : ok ? "pass" : "FAIL"; }
