@@ -13,7 +13,9 @@
 ///    nothing beyond the sample grid.
 ///  - Domain: the samples of domain() = active bounding box grown by one voxel (the rule of
 ///    sample_field.h); every leaf cell lies inside it. The domain is stored, not re-derived, so
-///    pruning samples of a decimated grid cannot move it.
+///    pruning samples of a decimated grid cannot move it. The ring always reads the background
+///    here; SampleField reads it as "outside" when the background is at or inside v (a dense
+///    file's 0 at v = 0), so decimating such a grid meshes its ring differently (known gap).
 ///
 /// Sparse volumes (narrow-band level sets) are never densified: masks and samples stay sparse,
 /// and for_each_level0_leaf_sparse() visits only unit cells that touch allocated sample nodes.

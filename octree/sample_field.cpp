@@ -38,7 +38,13 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
     }
     // Inactive samples of the domain (background, inactive tiles) - at least the background,
     // which every sample in the grown ring reads unless it is inside a tile.
-    consider(grid_->background());
+    // The ring around the active box reads the background only when it is strictly outside
+    // (see the header: a dense file's lattice is its box, and a background at or inside v -
+    // MRC's 0 at v = 0 - would wrap the box in a spurious shell).
+    lattice_ = active;
+    const double bg = grid_->background();
+    ring_reads_background_ = sign_ * (bg - isovalue) < 0;
+    if (ring_reads_background_ || std::uint64_t(grid_->activeVoxelCount()) < active.volume()) consider(bg);
     for (auto it = grid_->cbeginValueOff(); it; ++it) {
         if (!it.isVoxelValue()) consider(*it);
         else { consider(*it); }

@@ -16,9 +16,13 @@
 ///    the largest d that keeps every other sample and face saddle on its side; otherwise v* = v.
 ///    So E points never coincide with grid points, and two blobs touching at a face saddle
 ///    at v are one component. (Saddles inside a cell at exactly v are not detected.)
-///  - Domain: samples inside the active bounding box grown by one voxel are read through the grid
-///    (inactive voxels give the background or tile value); beyond it every sample is "outside"
-///    (phi = -outside_magnitude), so Sigma is a union of closed surfaces inside domain().expand(1).
+///  - Domain: samples inside the active bounding box (the lattice) are read through the grid
+///    (inactive voxels give the background or tile value). The ring of samples around it reads
+///    the background too when the background is strictly outside (a fog volume's 0 below v: Sigma
+///    may pass between the last active voxel and its inactive neighbour), and is "outside"
+///    otherwise (a dense file's box whose background 0 equals v). Beyond domain() every sample
+///    is "outside" (phi = -outside_magnitude), so Sigma is a union of closed surfaces inside
+///    domain().expand(1), and the solid is clipped by the lattice box where it reaches it.
 #include <isodel/volume.h>
 
 #include <openvdb/openvdb.h>
@@ -61,6 +65,7 @@ public:
         double phi(const Coord& ijk) const
         {
             if (!f_->domain_.isInside(ijk)) return f_->outside_phi();
+            if (!f_->ring_reads_background_ && !f_->lattice_.isInside(ijk)) return f_->outside_phi();
             return f_->phi_of_value(acc_.getValue(ijk));
         }
         /// Corner phi values of the unit cell with lowest corner \p c, in the order
@@ -79,6 +84,8 @@ public:
 private:
     openvdb::FloatGrid::ConstPtr grid_;
     CoordBBox domain_;
+    CoordBBox lattice_;                 ///< the active bounding box
+    bool ring_reads_background_ = true; ///< see "Domain" above
     double isovalue_, effective_;
     Inside inside_;
     double sign_;
