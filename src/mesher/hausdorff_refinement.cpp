@@ -99,14 +99,26 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
     for (const auto* e : restricted)
         if (!passed_.count(e->key)) todo.push_back(e);
     if (todo.empty()) return {};
+    // Only the edges of the facets to check (most rounds check a few hundred of 10^5 facets).
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Tri>> by_edge;
+    for (const auto* e : todo) {
+        const auto& k = e->key.v;
+        by_edge[{k[0], k[1]}];
+        by_edge[{k[0], k[2]}];
+        by_edge[{k[1], k[2]}];
+    }
     for (const auto* e : restricted) {
+        const auto& k = e->key.v;
+        std::vector<Tri>* lists[3] = {nullptr, nullptr, nullptr};
+        int n = 0;
+        for (const auto& edge : {std::make_pair(k[0], k[1]), std::make_pair(k[0], k[2]), std::make_pair(k[1], k[2])}) {
+            const auto it = by_edge.find(edge);
+            if (it != by_edge.end()) lists[n++] = &it->second;
+        }
+        if (n == 0) continue;
         const auto vs = facet_vertices(e->facet);
         const Tri t{to_vdb(vs[0]->point()), to_vdb(vs[1]->point()), to_vdb(vs[2]->point())};
-        const auto& k = e->key.v;
-        by_edge[{k[0], k[1]}].push_back(t);
-        by_edge[{k[0], k[2]}].push_back(t);
-        by_edge[{k[1], k[2]}].push_back(t);
+        for (int i = 0; i < n; ++i) lists[i]->push_back(t);
     }
     const double limit = 0.7 * eps_;
     const double step_cap = 0.5 * field_.min_voxel_edge();
