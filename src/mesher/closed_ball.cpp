@@ -52,7 +52,7 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
 
     // Unbounded Voronoi edges of surface facets mean a hole in G; the driver repairs it.
     for (const auto& e : active)
-        if (e.record->overflow) rep.candidates.push_back({Point(), PointKind::Grid, 0, e.key});
+        if (e.overflow) rep.candidates.push_back({Point(), PointKind::Grid, 0, e.key});
     if (!rep.candidates.empty()) {
         rep.kind = Violation::Unbounded;
         return rep;
@@ -60,7 +60,7 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
 
     // CBP_VE: insert the crossing farthest from the dual triangle.
     for (const auto& e : active)
-        if (e.record->crossings > 1) rep.candidates.push_back(candidate_of(e, PointKind::Topology));
+        if (e.crossings > 1) rep.candidates.push_back(candidate_of(e, PointKind::Topology));
     if (!rep.candidates.empty()) {
         rep.kind = Violation::VoronoiEdge;
         return rep;
@@ -68,15 +68,12 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
 
     std::vector<const FacetCache::Entry*> restricted;
     for (const auto& e : active)
-        if (e.record->crossings == 1) restricted.push_back(&e);
+        if (e.crossings == 1) restricted.push_back(&e);
     rep.restricted_facets = restricted.size();
 
     // Facets with a grid vertex: M's vertices must be samples of Sigma.
-    for (const auto* e : restricted) {
-        const auto vs = facet_vertices(e->facet);
-        if (!vs[0]->info().on_surface() || !vs[1]->info().on_surface() || !vs[2]->info().on_surface())
-            rep.candidates.push_back(candidate_of(*e, PointKind::Topology));
-    }
+    for (const auto* e : restricted)
+        if (!e->all_on_surface) rep.candidates.push_back(candidate_of(*e, PointKind::Topology));
     if (!rep.candidates.empty()) {
         rep.kind = Violation::GridVertex;
         return rep;

@@ -203,7 +203,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
             // Priority: voxel-bound holes, then Theorem 3 (grid cells), then find_violations'
             // classes; the later checks run only when the earlier ones found nothing.
             const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
-                                               [](const FacetCache::Entry& e) { return e.record->overflow; });
+                                               [](const FacetCache::Entry& e) { return e.overflow; });
             ViolationReport rep;
             if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
             if (!rep.candidates.empty()) rep.kind = Violation::GridCell;
@@ -220,7 +220,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
             if (rep.kind == Violation::None) {
                 std::vector<const FacetCache::Entry*> restricted;
                 for (const auto& e : cache.active())
-                    if (e.record->crossings == 1) restricted.push_back(&e);
+                    if (e.crossings == 1) restricted.push_back(&e);
                 rep.candidates = hausdorff.violations(restricted);
                 if (rep.candidates.empty()) rep.candidates = hausdorff.crease_violations(restricted);
                 if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
@@ -229,7 +229,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
             if (rep.kind == Violation::Unbounded) {
                 // Surface facets whose Voronoi edge left the bound: repair around their vertices.
                 for (const auto& e : cache.active())
-                    if (e.record->overflow)
+                    if (e.overflow)
                         for (const auto& v : facet_vertices(e.facet))
                             if (v->info().on_surface()) over_bound.push_back(v);
                 if (st.bound_repairs > 10 * st.g_points + 1000)

@@ -125,15 +125,22 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     std::vector<Entry> added;
     for (const auto& [f, key] : todo) {
         const Stored& st = map_.at(key);
-        if (st.record.crossings > 0 || st.record.overflow) added.push_back({st.facet, key, &st.record});
+        if (st.record.crossings > 0 || st.record.overflow) {
+            const auto vs = facet_vertices(st.facet);
+            const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
+            added.push_back({st.facet, key, &st.record, st.record.crossings, st.record.overflow, on});
+        }
     }
     std::sort(added.begin(), added.end(), by_key);
     for (const auto& t : todo) changed_.push_back(t.second);
     if (!changed_.empty() && !active_.empty()) {
+        // Both sorted by key: one merge walk drops the changed entries.
         std::sort(changed_.begin(), changed_.end());
+        auto c = changed_.begin();
         active_.erase(std::remove_if(active_.begin(), active_.end(),
                                      [&](const Entry& e) {
-                                         return std::binary_search(changed_.begin(), changed_.end(), e.key);
+                                         while (c != changed_.end() && *c < e.key) ++c;
+                                         return c != changed_.end() && !(e.key < *c);
                                      }),
                       active_.end());
     }

@@ -51,6 +51,11 @@ public:
         Facet facet;
         FacetKey key;
         const FacetRecord* record;
+        // Copies of the record's flags, so that the per-round scans of every active facet read
+        // this array sequentially instead of chasing `record` into the hash map.
+        std::uint16_t crossings;
+        bool overflow;
+        bool all_on_surface; ///< every vertex is an E/N point (kinds never change)
     };
     /// Facets whose Voronoi edge meets Sigma or overflowed, sorted by key.
     const std::vector<Entry>& active() const { return active_; }
