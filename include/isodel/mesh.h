@@ -41,7 +41,7 @@ struct MeshOptions {
     double eps_voxels = 0.5;             ///< ... in units of the smallest voxel edge
     bool snap = false;                   ///< Section 5: snap E points within eps of a grid point
     int threads = 0;                     ///< 0 = all hardware threads; result does not depend on it
-    std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 20 x |E| + 10^5
+    std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 100 x |E| + 10^6
     int max_rounds = 2000;               ///< cap on insertion rounds
     TetRegion tets = TetRegion::None;    ///< also build a tetrahedral mesh (DELVOLMESH)
 };

@@ -156,7 +156,8 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     // Steps 4-5: closed ball property, then eps refinement, one violation class per round.
     t0 = Clock::now();
     const std::size_t max_points =
-        options.max_points ? options.max_points : 20 * st.e_points + 100000;
+        // Generous: Marschner-Lobb at eps 0.1 voxel needs 849600 = 57 x |E| (crease cascades).
+        options.max_points ? options.max_points : 100 * st.e_points + 1000000;
     const int max_cells_walk = 4 * st.bound_n + 16;
     const double hash_cell = 0.25 * field.min_voxel_edge();
     // Knife-edge crease tips (octree/segment_walk.h): cut at most trim_fraction * eps of them.
