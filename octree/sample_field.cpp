@@ -46,8 +46,9 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
     ring_reads_background_ = sign_ * (bg - isovalue) < 0;
     if (ring_reads_background_ || std::uint64_t(grid_->activeVoxelCount()) < active.volume()) consider(bg);
     for (auto it = grid_->cbeginValueOff(); it; ++it) {
-        if (!it.isVoxelValue()) consider(*it);
-        else { consider(*it); }
+        // Inactive tiles beyond the lattice are read only through a ring that reads the background.
+        if (!ring_reads_background_ && !lattice_.hasOverlap(it.getBoundingBox())) continue;
+        consider(*it);
     }
     // Bilinear saddles of cell faces exactly at v (e.g. corners (1,-1,-1,1) at v = 0) make Sigma
     // non-manifold just like a sample at v; they follow the same rule (Sigma is the limit from
@@ -63,6 +64,8 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
                 Coord e1(0, 0, 0), e2(0, 0, 0);
                 e1[(axis + 1) % 3] = 1;
                 e2[(axis + 2) % 3] = 1;
+                // A face reaching into a ring that reads as outside is not a face of F's samples.
+                if (!ring_reads_background_ && !lattice_.isInside(c + e1 + e2)) continue;
                 const double b = acc.getValue(c + e1), cc = acc.getValue(c + e2), d = acc.getValue(c + e1 + e2);
                 if (std::min({a, b, cc, d}) > isovalue || std::max({a, b, cc, d}) < isovalue) continue;
                 const double den = a - b - cc + d;
