@@ -151,7 +151,9 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
                     if ((u == 0 && v == 0) || (u == n && v == 0) || (u == 0 && v == n)) continue; // on Sigma
                     const Vec3d s = a + (b - a) * (double(u) / n) + (c - a) * (double(v) / n);
                     Vec3d q;
-                    double d = (s - p).length(); // p is on Sigma: always an upper bound
+                    // p and the vertices are on Sigma: each distance is an upper bound, and near
+                    // the corners it saves the projection.
+                    double d = std::min({(s - p).length(), (s - a).length(), (s - b).length(), (s - c).length()});
                     const bool projected = d > limit && project(reader, index_to_world_, world_to_index_, step_cap, s, q);
                     if (projected) d = std::min(d, (q - s).length());
                     if (d > limit) {
@@ -202,22 +204,42 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         tris.emplace_back(kp(vs[0]->point()), kp(vs[1]->point()), kp(vs[2]->point()));
     }
     if (tris.empty()) return {};
+    // A cell that passed before still passes while the triangles nearest to its samples are in
+    // M: d(s, M) <= d(s, T) for every T in M. Only the other cells are sampled again.
+    std::unordered_set<FacetKey, FacetKeyHash> in_m;
+    in_m.reserve(restricted.size());
+    for (const auto* e : restricted) in_m.insert(e->key);
+    crease_state_.resize(crossed_cells_.size(), CreaseState::Unknown);
+    crease_witness_.resize(crossed_cells_.size());
+    std::vector<std::size_t> todo;
+    for (std::size_t ci = 0; ci < crossed_cells_.size(); ++ci) {
+        if (crease_state_[ci] == CreaseState::NoCrease) continue;
+        if (crease_state_[ci] == CreaseState::Passed &&
+            std::all_of(crease_witness_[ci].begin(), crease_witness_[ci].end(),
+                        [&](const FacetKey& k) { return in_m.count(k) > 0; }))
+            continue;
+        todo.push_back(ci);
+    }
+    if (todo.empty()) return {};
     Tree tree(tris.cbegin(), tris.cend());
     tree.accelerate_distance_queries();
     const double limit = 0.7 * eps_;
     // Lines every eps/2 (world) on each face; R lines per unit of index.
     const int R = std::clamp(int(std::ceil(2.0 * field_.min_voxel_edge() / eps_)), 2, 64);
-    std::vector<std::vector<Candidate>> found(crossed_cells_.size());
+    std::vector<std::vector<Candidate>> found(todo.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, crossed_cells_.size(), 16), [&](const auto& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 16), [&](const auto& r) {
         auto& reader = readers.local();
-        for (std::size_t ci = r.begin(); ci != r.end(); ++ci) {
+        for (std::size_t ti = r.begin(); ti != r.end(); ++ti) {
+            const std::size_t ci = todo[ti];
             const openvdb::Coord c = crossed_cells_[ci];
             double corner[8];
             reader.cell_corners(c, corner);
             const auto f = octree::Trilinear::from_corners(corner);
             double worst = limit;
             Vec3d worst_at;
+            bool any = false;
+            std::vector<FacetKey> witness;
             // Faces x = 0, 1; y = 0, 1; z = 0, 1 of the cell; on each, lines along the two other axes.
             for (int axis = 0; axis < 3; ++axis)
                 for (int side = 0; side < 2; ++side)
@@ -232,18 +254,31 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
                             p1[dir] = 1;
                             const double v0 = f(p0[0], p0[1], p0[2]), v1 = f(p1[0], p1[1], p1[2]);
                             if ((v0 >= 0) == (v1 >= 0)) continue;
+                            any = true;
                             const Vec3d l = p0 + (p1 - p0) * (v0 / (v0 - v1)); // F is linear here
                             const Vec3d w = field_.index_to_world(c.asVec3d() + l);
-                            const double d = std::sqrt(tree.squared_distance(KD::Point_3(w[0], w[1], w[2])));
+                            const KD::Point_3 q(w[0], w[1], w[2]);
+                            const auto cp = tree.closest_point_and_primitive(q);
+                            const double d = std::sqrt(CGAL::squared_distance(q, cp.first));
+                            witness.push_back(restricted[std::size_t(cp.second - tris.cbegin())]->key);
                             if (d > worst) {
                                 worst = d;
                                 worst_at = w;
                             }
                         }
                     }
-            if (worst > limit)
-                found[ci].push_back({Point(worst_at[0], worst_at[1], worst_at[2]), PointKind::Geometry, worst,
+            if (!any) {
+                crease_state_[ci] = CreaseState::NoCrease;
+            } else if (worst > limit) {
+                crease_state_[ci] = CreaseState::Unknown;
+                found[ti].push_back({Point(worst_at[0], worst_at[1], worst_at[2]), PointKind::Geometry, worst,
                                      FacetKey{{std::uint32_t(ci), 0xffffffffu, 0}}});
+            } else {
+                std::sort(witness.begin(), witness.end());
+                witness.erase(std::unique(witness.begin(), witness.end()), witness.end());
+                crease_state_[ci] = CreaseState::Passed;
+                crease_witness_[ci] = std::move(witness);
+            }
         }
     });
     std::vector<Candidate> out;

@@ -17,7 +17,8 @@
 //    every eps/2 along lines of the face (F is linear on them: exact roots) and each sample
 //    farther than the threshold from M (AABB tree of M's triangles) is inserted.
 // The threshold is 0.7 eps, leaving the sampling spacing's share of the margin. A facet's
-// verdict depends only on its vertices, so each facet is checked once.
+// verdict depends only on its vertices, so each facet is checked once; a cell's crease samples
+// are checked again only when a triangle nearest to one of them has left M.
 #include "mesher/closed_ball.h"
 #include "octree/sample_field.h"
 
@@ -44,6 +45,11 @@ private:
     openvdb::math::Mat3d index_to_world_, world_to_index_;
     std::unordered_set<FacetKey, FacetKeyHash> passed_;
     std::vector<openvdb::Coord> crossed_cells_;
+    // Per crossed cell, what the last crease check found: no crease sample at all (F does not
+    // change, so never again), or passed with these triangles nearest to its samples.
+    enum class CreaseState : char { Unknown, NoCrease, Passed };
+    std::vector<CreaseState> crease_state_;
+    std::vector<std::vector<FacetKey>> crease_witness_;
 };
 
 } // namespace isodel::mesher
