@@ -1,6 +1,7 @@
 // Property test (issue 5): small random volumes with fixed seeds, some quantized so that samples
 // equal the isovalue, each meshed by mesh_isosurface and certified by verify_surface. Label
-// "corpus" (it runs the mesher hundreds of times). ISODEL_PROPERTY_COUNT overrides the count.
+// "corpus" (it runs the mesher hundreds of times). ISODEL_PROPERTY_COUNT overrides the count,
+// ISODEL_PROPERTY_DUMP=DIR writes the failing volumes there.
 #include <catch2/catch.hpp>
 
 #include "../verify/verify_test_support.h"
@@ -8,6 +9,7 @@
 #include <isodel/errors.h>
 #include <isodel/mesh.h>
 #include <isodel/verify.h>
+#include <isodel/volume.h>
 
 #include <cstdlib>
 #include <random>
@@ -81,6 +83,12 @@ void run_property(Take take)
             ++passed;
         } else {
             ++failed;
+            // ISODEL_PROPERTY_DUMP=DIR keeps each failing volume as DIR/random_<seed>.vdb (for
+            // `isodel mesh/verify ... --iso 0 --inside above`).
+            if (const char* dir = std::getenv("ISODEL_PROPERTY_DUMP")) {
+                grid->setName("density");
+                write_vdb(std::string(dir) + "/random_" + std::to_string(s) + ".vdb", {grid});
+            }
             failures << "seed " << s << " n " << n << (quantized ? " quantized" : "") << ": topology " << r.topology_verdict
                      << ", mesh " << (r.mesh_ok() ? "ok" : "FAIL") << ", hausdorff " << (r.hausdorff_ok() ? "ok" : "FAIL")
                      << ", delaunay " << (r.delaunay_ok() ? "ok" : "FAIL") << "\n";
