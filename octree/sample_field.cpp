@@ -36,11 +36,10 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
         if (it.isVoxelValue()) consider(f);
         else consider(f); // tiles: one value for the whole tile
     }
-    // Inactive samples of the domain (background, inactive tiles) - at least the background,
-    // which every sample in the grown ring reads unless it is inside a tile.
-    // The ring around the active box reads the background only when it is strictly outside
-    // (see the header: a dense file's lattice is its box, and a background at or inside v -
-    // MRC's 0 at v = 0 - would wrap the box in a spurious shell).
+    // Inactive samples of the domain (background, inactive tiles). The ring around the active
+    // box reads the background only when it is strictly outside (see the header: a dense file's
+    // lattice is its box, and a background at or inside v - MRC's 0 at v = 0 - would wrap the
+    // box in a spurious shell); inside the lattice, inactive voxels read it whenever they exist.
     lattice_ = active;
     const double bg = grid_->background();
     ring_reads_background_ = sign_ * (bg - isovalue) < 0;

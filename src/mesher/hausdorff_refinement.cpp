@@ -72,6 +72,9 @@ bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec
     return true;
 }
 
+const FacetKey& key_of(const FacetKey& k) { return k; }
+const FacetKey& key_of(const FacetCache::Entry* e) { return e->key; }
+
 struct Tri {
     Vec3d a, b, c;
 };
@@ -206,9 +209,11 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     if (tris.empty()) return {};
     // A cell that passed before still passes while the triangles nearest to its samples are in
     // M: d(s, M) <= d(s, T) for every T in M. Only the other cells are sampled again.
-    std::unordered_set<FacetKey, FacetKeyHash> in_m;
-    in_m.reserve(restricted.size());
-    for (const auto* e : restricted) in_m.insert(e->key);
+    // `restricted` is in key order (FacetCache::active()): membership is a binary search.
+    const auto in_m = [&](const FacetKey& k) {
+        return std::binary_search(restricted.begin(), restricted.end(), k,
+                                  [](const auto& x, const auto& y) { return key_of(x) < key_of(y); });
+    };
     crease_state_.resize(crossed_cells_.size(), CreaseState::Unknown);
     crease_witness_.resize(crossed_cells_.size());
     std::vector<std::size_t> todo;
@@ -216,7 +221,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         if (crease_state_[ci] == CreaseState::NoCrease) continue;
         if (crease_state_[ci] == CreaseState::Passed &&
             std::all_of(crease_witness_[ci].begin(), crease_witness_[ci].end(),
-                        [&](const FacetKey& k) { return in_m.count(k) > 0; }))
+                        in_m))
             continue;
         todo.push_back(ci);
     }
