@@ -50,6 +50,9 @@ struct MeshOptions {
 struct TetStats {
     std::size_t vertices = 0, tets_inside = 0, tets_outside = 0;
     std::size_t g_prime = 0;              ///< grid points G' added (Section 4.1)
+    /// Grid points (G or G') next to M removed after M was final, their Voronoi cells proven
+    /// to miss Sigma (M unchanged): the slivers between an E point and its edge's sample.
+    std::size_t grid_points_removed = 0;
     double volume_inside = 0, volume_outside = 0; ///< world units cubed, sums of tet volumes
     double volume_enclosed_by_surface = 0;        ///< of M, by the divergence theorem
     double min_dihedral_deg = 0, max_dihedral_deg = 0;

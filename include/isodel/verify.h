@@ -34,8 +34,10 @@ struct VerifyOptions {
     /// agree on a wrong answer for near-critical data.
     int refine = 4;
     double refine_budget = 6.4e7;
-    /// When R and 2R disagree, keep doubling (2R vs 4R, ...) up to this refinement; the
-    /// reference is "determined" when two consecutive refinements agree. 0 = only R and 2R.
+    /// When R and 2R disagree, keep doubling (2R vs 4R, ...) up to this refinement, or further
+    /// while the next lattice stays within 1.5 x refine_budget samples (small volumes: random
+    /// cells with a saddle value near v settle only at R = 64); the reference is "determined"
+    /// when two consecutive refinements agree. 0 = only R and 2R.
     int max_refine = 32;
     /// Sub-lattice refinement used to sample Sigma for Sigma -> M (spacing 1/R_h voxel);
     /// 0 = automatic: clamp(ceil(1 / eps_voxels), 4, 12).

@@ -22,6 +22,7 @@ enum class PointKind : std::uint8_t {
     Edge = 1,        ///< E: crossing of Sigma with a grid edge
     Topology = 2,    ///< N inserted to enforce the closed ball property
     Geometry = 3,    ///< N inserted for the eps criterion
+    Snapped = 4,     ///< a grid point that took the place of the E points near it (--snap)
 };
 
 struct VertexInfo {

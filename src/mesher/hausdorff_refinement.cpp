@@ -82,8 +82,8 @@ struct Tri {
 } // namespace
 
 HausdorffRefinement::HausdorffRefinement(const octree::SampleField& field, double eps,
-                                         std::vector<openvdb::Coord> crossed_cells)
-    : field_(field), eps_(eps), crossed_cells_(std::move(crossed_cells))
+                                         std::vector<openvdb::Coord> crossed_cells, double snap_radius)
+    : field_(field), eps_(eps), snap_radius_(snap_radius), crossed_cells_(std::move(crossed_cells))
 {
     const Vec3d o = field.index_to_world(Vec3d(0.0));
     for (int k = 0; k < 3; ++k) {
@@ -136,6 +136,9 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
             const auto* e = todo[i];
             const auto vs = facet_vertices(e->facet);
             const Vec3d a = to_vdb(vs[0]->point()), b = to_vdb(vs[1]->point()), c = to_vdb(vs[2]->point());
+            // How far each vertex may be from Sigma: 0, or the snap radius for a snapped one.
+            double off[3];
+            for (int k = 0; k < 3; ++k) off[k] = vs[k]->info().kind == PointKind::Snapped ? snap_radius_ : 0.0;
             const Vec3d p = to_vdb(e->record->surface_point);
             // Sigma -> M at p.
             double dp = (geometry::closest_on_triangle(p, a, b, c) - p).length();
@@ -154,9 +157,10 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
                     if ((u == 0 && v == 0) || (u == n && v == 0) || (u == 0 && v == n)) continue; // on Sigma
                     const Vec3d s = a + (b - a) * (double(u) / n) + (c - a) * (double(v) / n);
                     Vec3d q;
-                    // p and the vertices are on Sigma: each distance is an upper bound, and near
-                    // the corners it saves the projection.
-                    double d = std::min({(s - p).length(), (s - a).length(), (s - b).length(), (s - c).length()});
+                    // p and the vertices are on Sigma (snapped ones within off): each distance is an
+                    // upper bound, and near the corners it saves the projection.
+                    double d = std::min({(s - p).length(), (s - a).length() + off[0], (s - b).length() + off[1],
+                                         (s - c).length() + off[2]});
                     const bool projected = d > limit && project(reader, index_to_world_, world_to_index_, step_cap, s, q);
                     if (projected) d = std::min(d, (q - s).length());
                     if (d > limit) {

@@ -30,7 +30,9 @@ namespace isodel::mesher {
 class HausdorffRefinement {
 public:
     /// \p crossed_cells: lower corners of the cells Sigma passes through.
-    HausdorffRefinement(const octree::SampleField& field, double eps, std::vector<openvdb::Coord> crossed_cells);
+    /// \p snap_radius: how far snapped vertices may be from Sigma (0 without --snap).
+    HausdorffRefinement(const octree::SampleField& field, double eps, std::vector<openvdb::Coord> crossed_cells,
+                        double snap_radius = 0.0);
 
     /// Candidates (surface points of the offending facets) among the restricted facets not
     /// checked before. \p restricted: the facets with one crossing.
@@ -42,6 +44,7 @@ public:
 private:
     const octree::SampleField& field_;
     double eps_;
+    double snap_radius_;
     openvdb::math::Mat3d index_to_world_, world_to_index_;
     std::unordered_set<FacetKey, FacetKeyHash> passed_;
     std::vector<openvdb::Coord> crossed_cells_;

@@ -9,7 +9,9 @@
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
 #include "mesher/surface_extraction.h"
+#include "mesher/snap_edge_points.h"
 #include "mesher/thin_tubes.h"
+#include "mesher/tunnel_shoulders.h"
 #include "mesher/volume_mesh.h"
 #include "mesher/voxel_bound.h"
 #include "octree/edge_crossings.h"
@@ -71,6 +73,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     st.effective_isovalue = field.effective_isovalue();
     const double eps = options.eps > 0 ? options.eps : options.eps_voxels * field.min_voxel_edge();
     st.eps_world = eps;
+    const double snap_radius = options.snap ? 0.5 * eps : 0.0; // snap_edge_points.h: eps / 2
 
     // Steps 1-2: E and G.
     auto t0 = Clock::now();
@@ -90,11 +93,22 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
         st.bound_n = layer.bound_n;
         initial.reserve(e.points.size() + layer.points.size());
         std::uint32_t id = 0;
+        // Section 5 (--snap): E points gathered around a sample give way to the sample.
+        SnapResult snap;
+        if (options.snap) snap = snap_edge_points(e.points, field, snap_radius);
         for (const auto& g : layer.points)
-            initial.push_back({to_point(field.index_to_world(g.asVec3d())), {id++, PointKind::Grid}});
-        for (const auto& p : e.points)
-            initial.push_back({to_point(field.index_to_world(p.index_pos)), {id++, PointKind::Edge}});
-        const auto tubes = thin_tube_points(field, crossed_cells);
+            initial.push_back({to_point(field.index_to_world(g.asVec3d())),
+                               {id++, snap.is_snapped_grid_point(g) ? PointKind::Snapped : PointKind::Grid}});
+        for (std::size_t i = 0; i < e.points.size(); ++i) {
+            if (options.snap && snap.snapped[i]) {
+                ++st.snapped;
+                continue;
+            }
+            initial.push_back({to_point(field.index_to_world(e.points[i].index_pos)), {id++, PointKind::Edge}});
+        }
+        auto tubes = thin_tube_points(field, crossed_cells);
+        const auto necks = tunnel_shoulder_points(field, crossed_cells);
+        tubes.insert(tubes.end(), necks.begin(), necks.end());
         st.n_topology += tubes.size();
         for (const auto& p : tubes) initial.push_back({to_point(field.index_to_world(p)), {id++, PointKind::Topology}});
         g_mask = std::make_unique<openvdb::MaskGrid>();
@@ -126,7 +140,8 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     std::vector<Vertex_handle> over_bound;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
         if (v->info().kind == PointKind::Edge) measure(v, st.max_cells_e, st.bound_e, over_bound);
-        else if (v->info().kind == PointKind::Topology) measure(v, st.max_cells_n, st.bound_n, over_bound);
+        else if (v->info().kind == PointKind::Topology || v->info().kind == PointKind::Snapped)
+            measure(v, st.max_cells_n, st.bound_n, over_bound);
     // Grid points whose Voronoi cell may meet Sigma (Theorem 3, checked): all of G at first.
     std::vector<Vertex_handle> grid_pending;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
@@ -172,7 +187,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     crease.separation = 1e-4;
     crease.trim = (tie_shifted ? 0.005 : 0.02) * eps / field.min_voxel_edge();
     FacetCache cache(crease);
-    HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells));
+    HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), snap_radius);
     FacetLoopScanner loops;
     double t_topology = 0, t_refine = 0;
     {

@@ -33,7 +33,7 @@ std::string to_json(const MeshStats& s)
     const TetStats& t = s.tets;
     if (t.vertices > 0) {
         o << ",\n  \"tets\": {\"vertices\": " << t.vertices << ", \"tets_inside\": " << t.tets_inside
-          << ", \"tets_outside\": " << t.tets_outside << ", \"G_prime\": " << t.g_prime
+          << ", \"tets_outside\": " << t.tets_outside << ", \"G_prime\": " << t.g_prime << ", \"grid_points_removed\": " << t.grid_points_removed
           << ",\n    \"volume_inside\": " << t.volume_inside << ", \"volume_outside\": " << t.volume_outside
           << ", \"volume_enclosed_by_surface\": " << t.volume_enclosed_by_surface
           << ",\n    \"min_dihedral_deg\": " << t.min_dihedral_deg << ", \"max_dihedral_deg\": " << t.max_dihedral_deg

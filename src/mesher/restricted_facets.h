@@ -43,6 +43,17 @@ public:
     /// the triangulation, and the active list is sorted by key, so the result is deterministic.
     void update(const Delaunay& dt, const octree::SampleField& field, int max_cells);
 
+    /// Forgets every record: the next update() rescans the whole triangulation (after vertex
+    /// removals, which invalidate the stored cell handles).
+    void reset()
+    {
+        map_.clear();
+        inserted_.clear();
+        changed_.clear();
+        active_.clear();
+        scanned_ = false;
+    }
+
     /// Inserts \p p (located from \p hint) and returns its vertex, or a null handle when p is
     /// already a vertex.
     Vertex_handle insert(Delaunay& dt, const Point& p, VertexInfo info, Cell_handle hint = Cell_handle());

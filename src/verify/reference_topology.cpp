@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 
 namespace isodel::verify {
@@ -157,7 +158,8 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
             rep.components = std::move(cur);
             break;
         }
-        if (2 * R > std::max(max_refine, 2 * refine)) {
+        const bool affordable = max_refine > 0 && double(cells.size()) * std::pow(2.0 * R, 3) <= 1.5 * budget;
+        if (2 * R > std::max(max_refine, 2 * refine) && !affordable) {
             rep.components = std::move(cur);
             break;
         }

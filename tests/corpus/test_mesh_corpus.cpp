@@ -1,8 +1,7 @@
 // The shared volumes meshed at eps = 0.5 voxel: M has the manifest's topology (settled
 // independently of isodel) and isodel verify certifies every guarantee, with the voxel bound held.
 // Dense copies (.mrc) whose background 0 equals v run too (the ring rule of sample_field.h).
-// Volumes the mesher does not yet get right (open defects of issue 4) run in a [!mayfail] case so
-// they are reported on every run. Label "corpus".
+// Label "corpus".
 #include <catch2/catch.hpp>
 
 #include "../mesher/mesher_test_support.h"
@@ -75,12 +74,9 @@ TEST_CASE("shared volumes: topology and guarantees at eps 0.5 voxel", "[corpus][
                  // open level set cut by the box, knife-edge creases everywhere (~50 s)
                  "analytic/marschner_lobb.vdb",
                  // dense files, background 0 = v: the box must not be wrapped in a shell
-                 "analytic/torus.mrc", "analytic/genus3.mrc", "cells/random_n4_s1.mrc"});
-}
-
-TEST_CASE("shared volumes: known failures", "[corpus][mesher][!mayfail]")
-{
-    // A quantized random volume: its tie-shifted level set has handles ~1e-3 voxel thin (genus 9
-    // instead of 10 at eps 0.5; it verifies at eps 0.1).
-    mesh_corpus({"cells/random_quantized_n6_s5.vdb"});
+                 "analytic/torus.mrc", "analytic/genus3.mrc", "cells/random_n4_s1.mrc",
+                 // random samples: a two-cap gap at a body saddle, not to be bridged
+                 "cells/random_n4_s2.vdb",
+                 // samples exactly at v (tie rule), handles through in-cell necks (tunnel shoulders)
+                 "cells/random_quantized_n6_s5.vdb", "cells/random_quantized_n6_s5.mrc"});
 }

@@ -38,6 +38,21 @@ inline openvdb::FloatGrid::Ptr make_grid(int n, double voxel, const openvdb::Vec
     return grid;
 }
 
+/// The property test's random volumes: n^3 samples uniform in [-1, 1] from std::mt19937(seed),
+/// padded by one layer of -1 (as the manifest's random volumes); quantized: values in
+/// {-1, -0.5, 0, 0.5, 1}, so many samples equal the isovalue 0.
+inline openvdb::FloatGrid::Ptr random_volume(int n, unsigned seed, bool quantized)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    return make_grid(n + 2, 1.0, openvdb::Vec3d(0.0), [&](const openvdb::Vec3d& x) {
+        for (int a = 0; a < 3; ++a)
+            if (x[a] == 0 || x[a] == n + 1) return -1.0;
+        const double v = U(rng);
+        return quantized ? std::round(v * 2.0) / 2.0 : v;
+    });
+}
+
 inline double sphere_f(const openvdb::Vec3d& x, const openvdb::Vec3d& c, double r) { return r - (x - c).length(); }
 
 inline double torus_f(const openvdb::Vec3d& x, const openvdb::Vec3d& c, double R, double r)

@@ -20,6 +20,7 @@ struct MeshCliOptions {
     int max_rounds = 2000;
     std::size_t max_points = 0;
     bool quiet = false;
+    bool snap = false;
 };
 } // namespace
 
@@ -42,6 +43,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     cmd->add_option("--stats", o->stats, "Write statistics as JSON");
     cmd->add_option("--max-rounds", o->max_rounds, "Bound on refinement rounds");
     cmd->add_option("--max-points", o->max_points, "Bound on inserted points (0 = automatic)");
+    cmd->add_flag("--snap", o->snap,
+                  "Snap the grid-edge crossings within eps/2 of a sample onto it, where at least three "
+                  "gather (paper Section 5): fewer, better spaced points");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->callback([o, &exit_code] {
         if (!(o->eps >= 0) || !(o->eps_voxels > 0)) throw InvalidInput("--eps/--eps-voxels must be positive");
@@ -69,6 +73,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.threads = o->threads;
         mo.max_rounds = o->max_rounds;
         mo.max_points = o->max_points;
+        mo.snap = o->snap;
         if (!o->tets.empty())
             mo.tets = o->region == "both" ? TetRegion::Both
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;

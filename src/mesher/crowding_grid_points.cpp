@@ -1,0 +1,89 @@
+#include "mesher/crowding_grid_points.h"
+
+#include "mesher/circumcenter.h"
+#include "octree/cell_interpolant.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace isodel::mesher {
+
+bool voronoi_cell_misses_sigma(const Delaunay& dt, Vertex_handle g, const std::vector<Cell_handle>& cells,
+                               const octree::SampleField::Reader& reader, int max_cells)
+{
+    const auto& field = reader.field();
+    openvdb::Vec3d lo(INFINITY), hi(-INFINITY);
+    for (const Cell_handle& c : cells) {
+        if (dt.is_infinite(c)) return false; // on the hull: unbounded cell
+        const Point w = robust_circumcenter(c);
+        const openvdb::Vec3d q = field.world_to_index({w.x(), w.y(), w.z()});
+        lo = openvdb::math::minComponent(lo, q);
+        hi = openvdb::math::maxComponent(hi, q);
+    }
+    // Rounding of the circumcentres: grow the box by a hair (a larger box only makes the
+    // certificate harder to pass).
+    const double pad = 1e-9 * (1.0 + std::max(lo.length(), hi.length()));
+    lo -= openvdb::Vec3d(pad);
+    hi += openvdb::Vec3d(pad);
+    const openvdb::Coord c0(int(std::floor(lo[0])), int(std::floor(lo[1])), int(std::floor(lo[2])));
+    const openvdb::Coord c1(int(std::floor(hi[0])), int(std::floor(hi[1])), int(std::floor(hi[2])));
+    if (std::int64_t(c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1) > max_cells) return false;
+    const openvdb::Vec3d gi = field.world_to_index({g->point().x(), g->point().y(), g->point().z()});
+    double gc[8];
+    const openvdb::Coord gcell(int(std::floor(gi[0])), int(std::floor(gi[1])), int(std::floor(gi[2])));
+    reader.cell_corners(gcell, gc);
+    const bool inside = octree::Trilinear::from_corners(gc)(gi[0] - gcell[0], gi[1] - gcell[1], gi[2] - gcell[2]) >= 0;
+    double corner[8];
+    for (int z = c0[2]; z <= c1[2]; ++z)
+        for (int y = c0[1]; y <= c1[1]; ++y)
+            for (int x = c0[0]; x <= c1[0]; ++x) {
+                reader.cell_corners(openvdb::Coord(x, y, z), corner);
+                const octree::Trilinear f = octree::Trilinear::from_corners(corner);
+                const openvdb::Vec3d base(x, y, z);
+                // The box's part inside this cell, in local coordinates.
+                const openvdb::Vec3d a = openvdb::math::maxComponent(lo - base, openvdb::Vec3d(0.0));
+                const openvdb::Vec3d b = openvdb::math::minComponent(hi - base, openvdb::Vec3d(1.0));
+                for (int n = 0; n < 8; ++n) {
+                    const double phi = f(n & 1 ? b[0] : a[0], n & 2 ? b[1] : a[1], n & 4 ? b[2] : a[2]);
+                    if ((phi >= 0) != inside) return false;
+                }
+            }
+    return true;
+}
+
+std::size_t remove_crowding_grid_points(Delaunay& dt, const octree::SampleField& field, double reach)
+{
+    // Grid vertices with a surface neighbour within reach, in id order.
+    std::vector<Vertex_handle> near;
+    const double r2 = reach * reach;
+    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+        Vertex_handle a = e->first->vertex(e->second), b = e->first->vertex(e->third);
+        if (a->info().on_surface() == b->info().on_surface()) continue;
+        if (a->info().on_surface()) std::swap(a, b);
+        if (a->info().kind == PointKind::Grid && CGAL::squared_distance(a->point(), b->point()) < r2) near.push_back(a);
+    }
+    std::sort(near.begin(), near.end(), [](Vertex_handle x, Vertex_handle y) { return x->info().id < y->info().id; });
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+
+    // Certified on the unchanged triangulation, removed afterwards. Incident cells are gathered
+    // serially (CGAL marks visited cells in the triangulation), the certificates in parallel.
+    std::vector<std::vector<Cell_handle>> cells(near.size());
+    for (std::size_t i = 0; i < near.size(); ++i) dt.incident_cells(near[i], std::back_inserter(cells[i]));
+    std::vector<char> ok(near.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, near.size(), 64), [&](const auto& r) {
+        const octree::SampleField::Reader reader(field);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) ok[i] = voronoi_cell_misses_sigma(dt, near[i], cells[i], reader);
+    });
+    std::size_t removed = 0;
+    for (std::size_t i = 0; i < near.size(); ++i)
+        if (ok[i]) {
+            dt.remove(near[i]);
+            ++removed;
+        }
+    return removed;
+}
+
+} // namespace isodel::mesher
