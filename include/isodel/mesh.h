@@ -21,6 +21,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <array>
 #include <cstddef>
 #include <map>
 #include <optional>
@@ -39,7 +40,10 @@ struct MeshOptions {
     std::optional<Inside> inside;        ///< default: Below for level-set grids, Above otherwise
     double eps = 0.0;                    ///< Hausdorff bound in world units; 0 = use eps_voxels
     double eps_voxels = 0.5;             ///< ... in units of the smallest voxel edge
-    bool snap = false;                   ///< Section 5: snap E points within eps of a grid point
+    bool snap = false;                   ///< Section 5: snap E points within eps/2 of a grid point
+    /// Also return the final point set E u G u N of the surface phase (MeshResult::points), e.g.
+    /// to time a bare Delaunay triangulation of it (tools/bench/compare_bench).
+    bool keep_points = false;
     int threads = 0;                     ///< 0 = all hardware threads; result does not depend on it
     std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 100 x |E| + 10^6
     int max_rounds = 2000;               ///< cap on insertion rounds
@@ -97,6 +101,9 @@ struct MeshResult {
     /// tets.triangles == surface.triangles, so the inside region's boundary is M index for index.
     TetMesh tets;
     MeshStats stats;
+    /// With MeshOptions::keep_points: every vertex of Del(E u G u N) once M is final (before the
+    /// tetrahedra's G'), world coordinates, in insertion (id) order.
+    std::vector<std::array<double, 3>> points;
 };
 
 /// \p stats as a JSON object (counts, phase seconds, peak memory, voxel bounds, topology).

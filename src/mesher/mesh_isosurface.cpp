@@ -279,6 +279,14 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     st.seconds["refine"] = t_refine;
 
     result.surface = extract_surface(dt, cache);
+    if (options.keep_points) {
+        std::vector<std::pair<std::uint32_t, Point>> all;
+        all.reserve(dt.number_of_vertices());
+        for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) all.emplace_back(v->info().id, v->point());
+        std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        result.points.reserve(all.size());
+        for (const auto& [id, p] : all) result.points.push_back({p.x(), p.y(), p.z()});
+    }
     st.vertices = result.surface.vertices.size();
     st.triangles = result.surface.triangles.size();
     st.components = surface_topology(result.surface);

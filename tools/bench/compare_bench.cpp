@@ -13,12 +13,10 @@
 //                  perturb + exude
 //   VDB v2m        openvdb::tools::volumeToMesh(grid, points, tris, quads, isovalue), adaptivity 0
 //                  (no guarantees: the speed floor; uses TBB's default thread count, here 2)
-//   DT(M+C)        CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion
-//                  (dt.insert(begin, end)), of the point set P = the vertices of isodel's M (from
-//                  the "isodel 2thr" run of the same repetition) + the grid corners of every cell
-//                  that Sigma crosses (corners of mixed sign of phi). This stands in for isodel's
-//                  final point set E u G u N, which MeshResult does not expose; the table prints
-//                  |P| next to isodel's own |E|+|G|+|N|. Only the insertion is timed.
+//   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion
+//                  (dt.insert(begin, end)), of isodel's own final point set E u G u N
+//                  (MeshResult::points of the "isodel 2thr" run of the same repetition, with
+//                  MeshOptions::keep_points). Only the insertion is timed.
 //
 // Times are wall-clock (steady_clock) around the method only (the volume is read before the
 // clock starts), medians over --reps. Peak memory is the child's whole peak RSS (it includes the
@@ -90,7 +88,7 @@ using Tri = std::array<std::int64_t, 3>;
 enum Method { I1, I2, IT, MS, MT, VDB, DTM, NMETHODS };
 const char* kKey[NMETHODS] = {"i1", "i2", "it", "ms", "mt", "vdb", "dt"};
 const char* kLabel[NMETHODS] = {"isodel 1thr", "isodel 2thr", "isodel+tets 2thr", "Mesh_3 surf",
-                                "Mesh_3 tets", "VDB volumeToMesh", "DT(M+C)"};
+                                "Mesh_3 tets", "VDB volumeToMesh", "DT(E+G+N)"};
 
 /// What a child sends back (fixed size), followed for isodel 2thr by the vertices of M.
 struct ChildResult {
@@ -197,41 +195,8 @@ void run_mesh3(const isodel::octree::SampleField& field, double eps, bool tets, 
     out.ok = 1;
 }
 
-/// P = M's vertices + the corners of the cells of domain().expand(1) whose corner phi values differ
-/// in sign.
-std::vector<K::Point_3> dt_points(const isodel::octree::SampleField& field, const std::vector<V3>& mverts)
-{
-    std::vector<K::Point_3> pts;
-    pts.reserve(mverts.size() * 4);
-    for (const auto& v : mverts) pts.emplace_back(v[0], v[1], v[2]);
-    const isodel::octree::SampleField::Reader reader(field);
-    openvdb::CoordBBox b = field.domain();
-    b.expand(1);
-    const openvdb::CoordBBox box(b.min(), b.max().offsetBy(-1));
-    std::unordered_set<std::uint64_t> seen;
-    auto key = [&](const openvdb::Coord& c) {
-        return (std::uint64_t(c.x() - b.min().x()) << 42) | (std::uint64_t(c.y() - b.min().y()) << 21) |
-               std::uint64_t(c.z() - b.min().z());
-    };
-    double ph[8];
-    for (auto it = box.begin(); it; ++it) {
-        const openvdb::Coord c = *it;
-        reader.cell_corners(c, ph);
-        bool pos = false, neg = false;
-        for (double p : ph) (p > 0 ? pos : neg) = true;
-        if (!(pos && neg)) continue;
-        for (int n = 0; n < 8; ++n) {
-            const openvdb::Coord q = c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1);
-            if (!seen.insert(key(q)).second) continue;
-            const auto w = field.index_to_world(q.asVec3d());
-            pts.emplace_back(w[0], w[1], w[2]);
-        }
-    }
-    return pts;
-}
-
 /// Body of a child: run one method, fill \p out (and \p payload for isodel 2thr).
-void child_run(Method m, const std::string& path, const Dataset& ds, double eps_voxels, const std::vector<V3>& mverts,
+void child_run(Method m, const std::string& path, const Dataset& ds, double eps_voxels, const std::vector<V3>& dt_input,
                ChildResult& out, std::vector<V3>& payload)
 {
     isodel::ReadOptions ro;
@@ -244,6 +209,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         mo.eps_voxels = eps_voxels;
         mo.threads = m == I1 ? 1 : 2;
         if (m == IT) mo.tets = isodel::TetRegion::Inside;
+        mo.keep_points = m == I2; // for the DT(E+G+N) row
         const auto t0 = std::chrono::steady_clock::now();
         isodel::MeshResult r = isodel::mesh_isosurface(*vol.grid, mo);
         out.secs = seconds_since(t0);
@@ -253,7 +219,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         out.extra = (long long)(r.stats.e_points + r.stats.g_points + r.stats.n_topology + r.stats.n_geometry);
         copy_str(out.topo, sizeof out.topo, isodel_topology(r.stats));
         copy_str(out.msg, sizeof out.msg, phases(r.stats));
-        if (m == I2) payload = std::move(r.surface.vertices);
+        if (m == I2) payload = std::move(r.points);
         out.ok = 1;
         return;
     }
@@ -277,11 +243,13 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         return;
     }
     if (m == DTM) {
-        if (mverts.empty()) {
+        if (dt_input.empty()) {
             copy_str(out.msg, sizeof out.msg, "no isodel 2thr mesh in this repetition");
             return;
         }
-        const std::vector<K::Point_3> pts = dt_points(field, mverts);
+        std::vector<K::Point_3> pts;
+        pts.reserve(dt_input.size());
+        for (const auto& v : dt_input) pts.emplace_back(v[0], v[1], v[2]);
         const auto t0 = std::chrono::steady_clock::now();
         DT dt;
         dt.insert(pts.begin(), pts.end());
@@ -308,7 +276,7 @@ bool write_all(int fd, const void* p, std::size_t n)
 
 /// Forks, runs \p m in the child, collects its result, time and peak RSS.
 Run run_forked(Method m, const std::string& path, const Dataset& ds, double eps_voxels, int timeout,
-               std::vector<V3>& mverts)
+               std::vector<V3>& dt_input)
 {
     Run run;
     int fds[2];
@@ -329,7 +297,7 @@ Run run_forked(Method m, const std::string& path, const Dataset& ds, double eps_
         ChildResult out;
         std::vector<V3> payload;
         try {
-            child_run(m, path, ds, eps_voxels, mverts, out, payload);
+            child_run(m, path, ds, eps_voxels, dt_input, out, payload);
         } catch (const std::exception& e) {
             out.ok = 0;
             copy_str(out.msg, sizeof out.msg, e.what());
@@ -375,10 +343,10 @@ Run run_forked(Method m, const std::string& path, const Dataset& ds, double eps_
     run.topo = out.topo;
     run.msg = out.msg;
     if (m == I2) {
-        mverts.clear();
+        dt_input.clear();
         if (out.ok && buf.size() == sizeof out + std::size_t(out.payload_points) * sizeof(V3)) {
-            mverts.resize(std::size_t(out.payload_points));
-            std::memcpy(mverts.data(), buf.data() + sizeof out, mverts.size() * sizeof(V3));
+            dt_input.resize(std::size_t(out.payload_points));
+            std::memcpy(dt_input.data(), buf.data() + sizeof out, dt_input.size() * sizeof(V3));
         }
     }
     return run;
@@ -478,7 +446,7 @@ int main(int argc, char** argv)
         eps_list = {0.5};
         filters = {"protein/1hpv_molmap_6A_2A.vdb", "analytic/torus.vdb", "ct/skull_2.9.vdb"};
     }
-    if (enabled[DTM]) enabled[I2] = true; // the Delaunay row needs isodel 2thr's M
+    if (enabled[DTM]) enabled[I2] = true; // the Delaunay row needs isodel 2thr's points
     openvdb::initialize(); // registers grid types only; no TBB work happens in this (forking) process
 
     std::ifstream in(data + "/manifest.json");
@@ -520,9 +488,8 @@ int main(int argc, char** argv)
     std::printf("compare_bench: %s, %ld cores online, reps %d (medians), timeout %d s per run\n", date,
                 ::sysconf(_SC_NPROCESSORS_ONLN), reps, timeout);
     std::printf("isodel/this = median time of isodel 2thr (isodel+tets 2thr for Mesh_3 tets) / this row's; < 1: isodel faster.\n"
-                "DT(M+C) = CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insert, of isodel's surface vertices M\n"
-                "          + the grid corners of the cells Sigma crosses (a stand-in for E u G u N, which MeshResult does\n"
-                "          not expose; the isodel rows' notes give isodel's own |E|+|G|+|N|).\n"
+                "DT(E+G+N) = CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insert, of isodel 2thr's final point\n"
+                "          set E u G u N (MeshResult::points).\n"
                 "Peak MiB = the forked child's whole ru_maxrss (volume included). VDB volumeToMesh runs on TBB's default threads.\n");
 
     struct Totals {
@@ -538,11 +505,11 @@ int main(int argc, char** argv)
             const std::string path = data + "/" + ds.file;
             std::vector<Run> runs[NMETHODS];
             for (int rep = 0; rep < reps; ++rep) {
-                std::vector<V3> mverts;
+                std::vector<V3> dt_input;
                 for (int m = 0; m < NMETHODS; ++m) {
                     if (!enabled[std::size_t(m)]) continue;
                     std::fprintf(stderr, "[%s eps %.2f rep %d] %s ...\n", ds.file.c_str(), eps, rep + 1, kLabel[m]);
-                    runs[m].push_back(run_forked(Method(m), path, ds, eps, timeout, mverts));
+                    runs[m].push_back(run_forked(Method(m), path, ds, eps, timeout, dt_input));
                 }
             }
             Totals t;
@@ -584,7 +551,7 @@ int main(int argc, char** argv)
         }
         std::printf("\n-- issue 7 targets at eps = %.2f voxel (medians) --\n", eps);
         std::printf("%-30s %-11s %16s %16s %16s %14s\n", "dataset", "dims", "Mesh3surf/isodel", "Mesh3tets/i+tets",
-                    "isodel/DT(M+C)", "1thr/2thr");
+                    "isodel/DT(E+G+N)", "1thr/2thr");
         std::printf("%-30s %-11s %16s %16s %16s %14s\n", "target", "", ">= 3", ">= 20", "<= 3", ">= 1.6");
         for (const auto& t : totals) {
             auto sec = [&](Method m) { return t.s[m].have ? t.s[m].secs : NAN; };
