@@ -53,11 +53,20 @@ Coord quadrant_cell(const Coord& p, int axis, int q)
     return u;
 }
 
-// The leaf that reports the leaf edge starting at p along axis: the first existing quadrant leaf.
+// The leaf that reports the leaf edge starting at p along axis: the first quadrant leaf that
+// has the edge's line on one of its 12 edges. (Not merely the first quadrant leaf: a fine leaf's
+// edge inside a coarse neighbour's face lies on no edge of the coarse leaf, which would then
+// own it and drop it.)
 std::optional<CellId> edge_owner(const AdaptiveGrid::Reader& r, const Coord& p, int axis)
 {
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
     for (int q = 0; q < 4; ++q)
-        if (auto l = r.leaf(quadrant_cell(p, axis, q))) return l;
+        if (auto l = r.leaf(quadrant_cell(p, axis, q))) {
+            const int s = l->size();
+            const bool on_b = p[b] == l->origin[b] || p[b] == l->origin[b] + s;
+            const bool on_c = p[c] == l->origin[c] || p[c] == l->origin[c] + s;
+            if (on_b && on_c) return l;
+        }
     return std::nullopt;
 }
 

@@ -116,4 +116,14 @@ std::string to_json(const MeshStats& stats);
 MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options,
                            Interrupter* interrupter = nullptr);
 
+struct AdaptiveVolume; // include/isodel/adaptive.h
+
+/// Meshes {F = options.isovalue} of the adaptive interpolant F of \p volume (Property IV; e.g.
+/// from `isodel decimate`). E, G and the tetrahedra's G' follow the leaves, so coarse regions
+/// get fewer points; the voxel bound is counted in leaves and held to 3k+1 for E points
+/// (MeshStats::bound_e). F is evaluated through its exact resampling on the finest lattice,
+/// which is also what `isodel verify` checks the result against. Same exceptions as above.
+MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& options,
+                           Interrupter* interrupter = nullptr);
+
 } // namespace isodel

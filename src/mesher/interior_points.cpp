@@ -1,5 +1,7 @@
 #include "mesher/interior_points.h"
 
+#include "mesher/adaptive_points.h"
+
 namespace isodel::mesher {
 
 openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::MaskGrid& g_mask)
@@ -12,7 +14,7 @@ openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::M
 }
 
 std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
-                                            TetRegion region)
+                                            TetRegion region, const octree::AdaptiveGrid::Reader* adaptive)
 {
     const bool want_in = region == TetRegion::Inside || region == TetRegion::Both;
     const bool want_out = region == TetRegion::Outside || region == TetRegion::Both;
@@ -27,7 +29,9 @@ std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, co
                 const openvdb::Coord c(x, y, z);
                 if (acc.isValueOn(c)) continue;
                 // phi is never 0 at a sample (octree/sample_field.h): "strictly" is automatic.
-                if (reader.phi(c) > 0 ? want_in : want_out) out.push_back(c);
+                if (!(reader.phi(c) > 0 ? want_in : want_out)) continue;
+                if (adaptive && !is_leaf_node(*adaptive, c)) continue;
+                out.push_back(c);
             }
     return out;
 }

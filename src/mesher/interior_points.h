@@ -8,6 +8,7 @@
 // include/isodel/mesh.h) -- enlarged to hold G; then conv(E u G u N u G') = B.
 #include <isodel/mesh.h>
 
+#include "octree/adaptive_grid.h"
 #include "octree/sample_field.h"
 
 #include <openvdb/openvdb.h>
@@ -22,7 +23,10 @@ openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::M
 /// The grid points (index coordinates) of G' for \p region, in z-major raster order
 /// (deterministic; volume_mesh.cpp re-sorts them for insertion).
 /// \pre region != TetRegion::None
+/// With \p adaptive, only leaf corners inside the domain (adaptive_points.h): coarse leaves give
+/// large tetrahedra.
 std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
-                                            TetRegion region);
+                                            TetRegion region,
+                                            const octree::AdaptiveGrid::Reader* adaptive = nullptr);
 
 } // namespace isodel::mesher

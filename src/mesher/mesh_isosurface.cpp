@@ -1,6 +1,7 @@
 // DELSURFMESH (paper Fig. 3), the data flow visible top-down:
 //   samples --edge_crossings--> E,  crossed cells --protective_layer--> G,
 //   Del(E u G) --closed ball (VE, grid vertex, VF, VC, VF loops)--> --eps refinement--> Del(E u G u N)|Sigma.
+#include "mesher/adaptive_points.h"
 #include "mesher/closed_ball.h"
 #include "mesher/delaunay.h"
 #include "mesher/facet_loops.h"
@@ -8,16 +9,19 @@
 #include "mesher/hausdorff_refinement.h"
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
-#include "mesher/surface_extraction.h"
 #include "mesher/snap_edge_points.h"
+#include "mesher/surface_extraction.h"
 #include "mesher/thin_tubes.h"
 #include "mesher/tunnel_shoulders.h"
 #include "mesher/volume_mesh.h"
 #include "mesher/voxel_bound.h"
+#include "octree/adaptive_vdb_format.h"
 #include "octree/edge_crossings.h"
 #include "octree/protective_layer.h"
+#include "octree/resample.h"
 #include "octree/sample_field.h"
 
+#include <isodel/adaptive.h>
 #include <isodel/errors.h>
 #include <isodel/mesh.h>
 
@@ -29,6 +33,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -47,10 +52,10 @@ std::size_t peak_memory_bytes()
 
 mesher::Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
-} // namespace
-
-MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options,
-                           Interrupter* interrupter)
+/// DELSURFMESH on \p grid's samples. With \p adaptive, \p grid is its exact resampling on the
+/// finest lattice (the F being meshed) and the point sets follow its leaves (adaptive_points.h).
+MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive,
+                      const MeshOptions& options, Interrupter* interrupter)
 {
     using namespace mesher;
     const auto t_start = Clock::now();
@@ -71,6 +76,8 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
     const octree::SampleField field(gptr, options.isovalue, inside);
     st.effective_isovalue = field.effective_isovalue();
+    std::unique_ptr<octree::AdaptiveGrid::Reader> leaves;
+    if (adaptive) leaves = std::make_unique<octree::AdaptiveGrid::Reader>(*adaptive);
     const double eps = options.eps > 0 ? options.eps : options.eps_voxels * field.min_voxel_edge();
     st.eps_world = eps;
     const double snap_radius = options.snap ? 0.5 * eps : 0.0; // snap_edge_points.h: eps / 2
@@ -83,9 +90,21 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     std::vector<openvdb::Coord> crossed_cells;
     {
         InterruptScope scope(interrupter, "points");
-        const octree::EdgeCrossings e = octree::edge_crossings(field);
+        octree::EdgeCrossings e = octree::edge_crossings(field);
         scope.check(50);
-        layer = octree::protective_layer(field, *e.crossed_cells);
+        if (adaptive) {
+            // E on leaf edges only; G from the leaves (adaptive_points.h).
+            e.points.erase(std::remove_if(e.points.begin(), e.points.end(),
+                                          [&](const octree::EdgePoint& p) { return !on_leaf_edge(*leaves, p.lower, p.axis); }),
+                           e.points.end());
+            const auto uniform = octree::protective_layer(field, openvdb::MaskGrid()); // radius and bounds only
+            layer.radius = uniform.radius;
+            layer.bound_e = std::max(uniform.bound_e, adaptive_bound_e(adaptive->k()));
+            layer.bound_n = std::max(uniform.bound_n, adaptive_bound_n(adaptive->k()));
+            layer.points = adaptive_protective_layer(*adaptive, *e.crossed_cells, layer.radius);
+        } else {
+            layer = octree::protective_layer(field, *e.crossed_cells);
+        }
         for (auto it = e.crossed_cells->cbeginValueOn(); it; ++it) crossed_cells.push_back(it.getCoord());
         st.e_points = e.points.size();
         st.g_points = layer.points.size();
@@ -95,7 +114,17 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
         std::uint32_t id = 0;
         // Section 5 (--snap): E points gathered around a sample give way to the sample.
         SnapResult snap;
-        if (options.snap) snap = snap_edge_points(e.points, field, snap_radius);
+        if (options.snap) {
+            // On an adaptive grid only G points may take the place of E points.
+            std::vector<openvdb::Coord> g_sorted;
+            std::function<bool(const openvdb::Coord&)> in_g;
+            if (adaptive) {
+                g_sorted = layer.points;
+                std::sort(g_sorted.begin(), g_sorted.end());
+                in_g = [&](const openvdb::Coord& g) { return std::binary_search(g_sorted.begin(), g_sorted.end(), g); };
+            }
+            snap = snap_edge_points(e.points, field, snap_radius, in_g);
+        }
         for (const auto& g : layer.points)
             initial.push_back({to_point(field.index_to_world(g.asVec3d())),
                                {id++, snap.is_snapped_grid_point(g) ? PointKind::Snapped : PointKind::Grid}});
@@ -133,7 +162,7 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
 
     // Theorem 2, measured: cells met by the Voronoi cells of E points.
     auto measure = [&](Vertex_handle v, int& max_cells, int bound, std::vector<Vertex_handle>& over) {
-        const int n = voronoi_cell_count(dt, v, field);
+        const int n = voronoi_cell_count(dt, v, field, leaves.get());
         if (n < 0 || n > bound) over.push_back(v);
         if (n > max_cells) max_cells = n;
     };
@@ -173,7 +202,8 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
     const std::size_t max_points =
         // Generous: Marschner-Lobb at eps 0.1 voxel needs 849600 = 57 x |E| (crease cascades).
         options.max_points ? options.max_points : 100 * st.e_points + 1000000;
-    const int max_cells_walk = 4 * st.bound_n + 16;
+    // Segment walks count unit cells: a leaf of level l spans 2^l of them per axis.
+    const int max_cells_walk = (4 * (adaptive ? 27 : st.bound_n) + 16) << (adaptive ? adaptive->max_level() : 0);
     const double hash_cell = 0.25 * field.min_voxel_edge();
     // Knife-edge crease tips (octree/segment_walk.h): cut at most trim_fraction * eps of them.
     // Refining toward a crease costs about (crease length / trim) points, so the cut is as large
@@ -298,12 +328,33 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
         vp.max_cells_walk = max_cells_walk;
         vp.next_id = &next_id;
         vp.interrupter = interrupter;
+        vp.adaptive = leaves.get();
         result.tets = build_volume_mesh(dt, cache, field, *g_mask, result.surface, vp, st.tets);
         st.seconds["tets"] = since(t0);
     }
     st.seconds["total"] = since(t_start);
     st.peak_memory_bytes = peak_memory_bytes();
     return result;
+}
+
+} // namespace
+
+MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
+{
+    return mesh_field(grid, nullptr, options, interrupter);
+}
+
+MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& options, Interrupter* interrupter)
+{
+    if (!volume.samples) throw InvalidInput("adaptive volume without samples");
+    const auto t0 = Clock::now();
+    const octree::AdaptiveGrid g = octree::to_adaptive_grid(volume);
+    const openvdb::FloatGrid::Ptr dense = octree::resample_dense(g);
+    const double t_resample = since(t0);
+    MeshResult r = mesh_field(*dense, g.max_level() > 0 ? &g : nullptr, options, interrupter);
+    r.stats.seconds["resample"] = t_resample;
+    r.stats.seconds["total"] += t_resample;
+    return r;
 }
 
 } // namespace isodel

@@ -19,7 +19,7 @@ bool SnapResult::is_snapped_grid_point(const openvdb::Coord& g) const
 }
 
 SnapResult snap_edge_points(const std::vector<octree::EdgePoint>& points, const octree::SampleField& field,
-                            double radius)
+                            double radius, const std::function<bool(const openvdb::Coord&)>& allowed)
 {
     SnapResult out;
     out.snapped.assign(points.size(), 0);
@@ -32,7 +32,8 @@ SnapResult snap_edge_points(const std::vector<octree::EdgePoint>& points, const 
         const openvdb::Vec3d w = field.index_to_world(e.index_pos);
         const double d0 = (field.index_to_world(e.lower.asVec3d()) - w).length();
         const double d1 = (field.index_to_world(upper.asVec3d()) - w).length();
-        if (std::min(d0, d1) < radius) near.push_back({d0 <= d1 ? e.lower : upper, i});
+        const openvdb::Coord g = d0 <= d1 ? e.lower : upper;
+        if (std::min(d0, d1) < radius && (!allowed || allowed(g))) near.push_back({g, i});
     }
     std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) {
         return coord_less(a.first, b.first) || (a.first == b.first && a.second < b.second);

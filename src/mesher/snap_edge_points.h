@@ -14,6 +14,7 @@
 #include "octree/edge_crossings.h"
 #include "octree/sample_field.h"
 
+#include <functional>
 #include <vector>
 
 namespace isodel::mesher {
@@ -25,8 +26,9 @@ struct SnapResult {
 };
 
 /// \p radius in world units. An E point within the radius of both ends of its edge (eps above
-/// two voxels) goes to the nearer one.
+/// two voxels) goes to the nearer one. With \p allowed, only grid points it accepts take E
+/// points' places (on an adaptive grid: points of G, adaptive_points.h).
 SnapResult snap_edge_points(const std::vector<octree::EdgePoint>& points, const octree::SampleField& field,
-                            double radius);
+                            double radius, const std::function<bool(const openvdb::Coord&)>& allowed = {});
 
 } // namespace isodel::mesher

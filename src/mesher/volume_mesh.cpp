@@ -41,7 +41,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     // box is empty, and each point of a raster row conflicts with cells spanning the whole row.
     std::vector<Point> pts;
     {
-        const std::vector<openvdb::Coord> gp = interior_points(field, g_mask, params.region);
+        const std::vector<openvdb::Coord> gp = interior_points(field, g_mask, params.region, params.adaptive);
         pts.reserve(gp.size());
         for (const auto& c : gp) {
             const auto w = field.index_to_world(c.asVec3d());

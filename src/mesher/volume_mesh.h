@@ -10,6 +10,7 @@
 // of Sigma (grid_cell_check.h). Either failure throws GuaranteeViolated.
 #include "mesher/delaunay.h"
 #include "mesher/restricted_facets.h"
+#include "octree/adaptive_grid.h"
 #include "octree/sample_field.h"
 
 #include <isodel/interrupt.h>
@@ -24,6 +25,8 @@ struct VolumeMeshParams {
     int max_cells_walk = 0;           ///< as for FacetCache::update
     std::uint32_t* next_id = nullptr; ///< the mesher's vertex id counter (advanced)
     Interrupter* interrupter = nullptr;
+    /// On an adaptive grid: G' is the leaf corners only (adaptive_points.h).
+    const octree::AdaptiveGrid::Reader* adaptive = nullptr;
 };
 
 /// Inserts G' into \p dt (through \p cache), checks that M is unchanged, classifies the cells

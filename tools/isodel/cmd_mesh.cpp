@@ -4,6 +4,7 @@
 
 #include "io/atomic_file.h"
 
+#include <isodel/adaptive.h>
 #include <isodel/errors.h>
 #include <isodel/mesh.h>
 
@@ -77,7 +78,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         if (!o->tets.empty())
             mo.tets = o->region == "both" ? TetRegion::Both
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
-        MeshResult res = mesh_isosurface(*vol.grid, mo, &progress);
+        // An adaptive file (`isodel decimate`): mesh on its leaves (Property IV).
+        MeshResult res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
+                                                 : mesh_isosurface(*vol.grid, mo, &progress);
 
         const auto tw = std::chrono::steady_clock::now();
         progress.start("write");
