@@ -44,6 +44,16 @@ const char* to_string(Violation v)
     return "?";
 }
 
+std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries)
+{
+    std::vector<Candidate> out;
+    for (const auto& e : entries) {
+        if (e.overflow) return {};
+        if (e.crossings > 1) out.push_back(candidate_of(e, PointKind::Topology));
+    }
+    return out;
+}
+
 ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps)
 {
     (void)dt;

@@ -42,4 +42,9 @@ struct ViolationReport {
 /// Looks for violations in priority order and returns those of the first class present.
 ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps);
 
+/// CBP_VE among \p entries only (e.g. FacetCache::recent()): the farthest crossing of every
+/// Voronoi edge crossing Sigma more than once. Empty when an entry overflowed (a hole in G is
+/// the driver's to repair first).
+std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries);
+
 } // namespace isodel::mesher

@@ -289,7 +289,31 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
                 else ++st.n_topology;
                 measure(v, st.max_cells_n, st.bound_n, over_bound);
             }
+            // CBP_VE cascades are local: splitting a Voronoi edge makes new Voronoi edges next
+            // to the new point, which may cross Sigma twice again (near creases, one at a time
+            // for hundreds of rounds). Follow the cascade on the facets the insertions changed
+            // (FacetCache::recent) instead of paying a full round, O(|active facets|), per step;
+            // the next full round re-checks everything. Bounded by the point bound.
+            std::size_t cascade = 0;
+            while (rep.kind == Violation::VoronoiEdge && over_bound.empty() &&
+                   st.n_geometry + st.n_topology <= max_points) {
+                cache.update(dt, field, max_cells_walk);
+                const auto more = voronoi_edge_violations(cache.recent());
+                if (more.empty()) break;
+                const InsertionResult next = insert_candidates(dt, cache, more, next_id, hash_cell);
+                if (next.inserted.empty()) break;
+                for (const auto& v : next.inserted) {
+                    loops.touched(v);
+                    ++st.n_topology;
+                    measure(v, st.max_cells_n, st.bound_n, over_bound);
+                }
+                cascade += next.inserted.size();
+                scope.check();
+            }
             (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff ? t_refine : t_topology) += since(tr);
+            if (std::getenv("ISODEL_TRACE"))
+                std::fprintf(stderr, "round %d: %zu inserted (+%zu cascade), %.2f ms\n", st.rounds, ins.inserted.size(),
+                             cascade, 1e3 * since(tr));
             if (st.n_geometry + st.n_topology > max_points) {
                 std::ostringstream os;
                 os << "refinement stopped by the point bound (" << max_points

@@ -149,6 +149,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     merged.reserve(active_.size() + added.size());
     std::merge(active_.begin(), active_.end(), added.begin(), added.end(), std::back_inserter(merged), by_key);
     active_.swap(merged);
+    recent_.swap(added);
 }
 
 } // namespace isodel::mesher

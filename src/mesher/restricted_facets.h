@@ -51,6 +51,7 @@ public:
         inserted_.clear();
         changed_.clear();
         active_.clear();
+        recent_.clear();
         scanned_ = false;
     }
 
@@ -70,6 +71,9 @@ public:
     };
     /// Facets whose Voronoi edge meets Sigma or overflowed, sorted by key.
     const std::vector<Entry>& active() const { return active_; }
+    /// The active facets the last update() computed (new or changed since the update before),
+    /// sorted by key: where the last insertions changed the restricted Voronoi diagram.
+    const std::vector<Entry>& recent() const { return recent_; }
     std::size_t computed_last_update() const { return computed_; }
 
 private:
@@ -83,6 +87,7 @@ private:
     std::vector<FacetKey> changed_; ///< keys erased by insert() since the last update
     bool scanned_ = false;
     std::vector<Entry> active_;
+    std::vector<Entry> recent_;
     std::size_t computed_ = 0;
 };
 

@@ -7,7 +7,7 @@
 //  - on random k-balanced grids (k = 1, 2) whose coarse leaves Sigma crosses, the mesh verifies
 //    (topology, Hausdorff, Delaunay) against the resampled dense F, the measured voxel bounds
 //    stay within 3k+1 (E) and the stated N bound, with fewer E and G points than meshing the
-//    dense resampling, and 1 and 2 threads give the same mesh.
+//    dense resampling, with --snap too, and 1 and 2 threads give the same mesh.
 #include <catch2/catch.hpp>
 
 #include "mesher/adaptive_points.h"
@@ -131,7 +131,7 @@ TEST_CASE("leaves_in_box and is_leaf_node agree with brute force", "[mesher][ada
 
 TEST_CASE("random adaptive grids mesh with guarantees I-III and the leaf voxel bound", "[mesher][adaptive]")
 {
-    std::size_t e_adaptive = 0, e_dense = 0, g_adaptive = 0, g_dense = 0;
+    std::size_t e_adaptive = 0, e_dense = 0, g_adaptive = 0, g_dense = 0, snapped = 0;
     for (unsigned seed = 1; seed <= 8; ++seed)
         for (int k : {1, 2}) {
             const bool smooth = seed % 2 == 0;
@@ -162,6 +162,16 @@ TEST_CASE("random adaptive grids mesh with guarantees I-III and the leaf voxel b
             e_dense += u.stats.e_points;
             g_adaptive += m.stats.g_points;
             g_dense += u.stats.g_points;
+            if (seed <= 4) {
+                // --snap on leaves: only G points may replace E points (adaptive_points.h).
+                MeshOptions so = mo;
+                so.snap = true;
+                const MeshResult sm = mesh_isosurface(av, so);
+                const VerifyReport srep = verify_surface(*dense, sm.surface, vo);
+                INFO("snap: " << srep.summary());
+                CHECK(srep.passed());
+                snapped += sm.stats.snapped;
+            }
             if (seed == 1) {
                 mo.threads = 1;
                 const MeshResult one = mesh_isosurface(av, mo);
@@ -172,4 +182,5 @@ TEST_CASE("random adaptive grids mesh with guarantees I-III and the leaf voxel b
     INFO("E " << e_adaptive << " vs " << e_dense << ", G " << g_adaptive << " vs " << g_dense);
     CHECK(e_adaptive < e_dense);
     CHECK(g_adaptive < g_dense);
+    CHECK(snapped > 0);
 }
