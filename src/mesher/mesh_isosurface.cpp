@@ -1,6 +1,8 @@
 // DELSURFMESH (paper Fig. 3), the data flow visible top-down:
 //   samples --edge_crossings--> E,  crossed cells --protective_layer--> G,
 //   Del(E u G) --closed ball (VE, grid vertex, VF, VC, VF loops)--> --eps refinement--> Del(E u G u N)|Sigma.
+// On an adaptive grid the same flow runs with E on leaf edges and G from the leaves
+// (adaptive_points.h), F read through the grid's exact resampling.
 #include "mesher/adaptive_points.h"
 #include "mesher/closed_ball.h"
 #include "mesher/delaunay.h"
