@@ -104,4 +104,13 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
     }
 }
 
+SampleField::SampleField(const SampleField& parent, const CoordBBox& clip) : SampleField(parent)
+{
+    // Beyond domain() every sample reads as outside (Reader::phi), so clipping the domain is
+    // the whole change; the mesher's loops (edge crossings, protective layer) run over
+    // domain(), so a block costs its box, not the grid's.
+    domain_.intersect(clip);
+    if (domain_.empty()) throw InvalidInput("block box misses the grid's domain");
+}
+
 } // namespace isodel::octree

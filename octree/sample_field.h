@@ -38,6 +38,12 @@ public:
     /// \throw InvalidInput empty grid, or \p isovalue outside the value range of the domain.
     SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside);
 
+    /// \p parent seen through the box \p clip (sample coordinates): the same samples, level v*
+    /// and outside value inside it, "outside" beyond it, so its Sigma is \p parent's Sigma inside
+    /// \p clip, closed along the box. The field of one block of partitioned meshing
+    /// (src/mesher/partitioned_meshing.h). \throw InvalidInput if \p clip misses the domain.
+    SampleField(const SampleField& parent, const CoordBBox& clip);
+
     const openvdb::FloatGrid& grid() const { return *grid_; }
     const openvdb::math::Transform& transform() const { return grid_->transform(); }
     /// Samples read through the grid: active bbox grown by one voxel.

@@ -48,6 +48,20 @@ struct MeshOptions {
     std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 100 x |E| + 10^6
     int max_rounds = 2000;               ///< cap on insertion rounds
     TetRegion tets = TetRegion::None;    ///< also build a tetrahedral mesh (DELVOLMESH)
+    /// Partitioned meshing (paper Fig. 8), dense grids: > 0 cuts the domain into blocks of this
+    /// many voxels per axis, meshes each block with a protective collar concurrently, then
+    /// merges their points in one Delaunay triangulation whose closed-ball and eps checks fix
+    /// the seams (src/mesher/partitioned_meshing.h). 0 = one block. Same guarantees either way.
+    int block_voxels = 0;
+};
+
+/// What partitioned meshing did (MeshOptions::block_voxels > 0).
+struct PartitionStats {
+    int blocks = 0;                       ///< blocks holding crossings of Sigma
+    int collar_voxels = 0;                ///< collar width (the widest axis)
+    int blocks_failed = 0;                ///< blocks whose run stopped at a bound (merge redoes them)
+    std::size_t block_points = 0;         ///< N points the blocks contributed to the merge
+    std::size_t seam_points = 0;          ///< N points the merge inserted (seams)
 };
 
 /// Quality and size of the tetrahedral mesh (all figures over the returned tetrahedra).
@@ -83,7 +97,8 @@ struct MeshStats {
     int rounds = 0;
     double effective_isovalue = 0.0;
     double eps_world = 0.0;
-    /// Seconds per phase: read, points, delaunay, closed_ball, refine, tets, write, total.
+    /// Seconds per phase: read, points, delaunay, closed_ball, refine, tets, write, total (and
+    /// blocks, the concurrent block phase of partitioned meshing).
     std::map<std::string, double> seconds;
     std::size_t peak_memory_bytes = 0;
     /// Voxel bound (Theorem 2): the most cells a Voronoi cell of an E / N point met, and the
@@ -92,6 +107,7 @@ struct MeshStats {
     std::size_t bound_repairs = 0;       ///< grid points added where a Voronoi cell left its bound
     std::vector<ComponentTopology> components;
     TetStats tets;                        ///< filled when MeshOptions::tets != None
+    PartitionStats partition;             ///< filled when MeshOptions::block_voxels > 0
 };
 
 struct MeshResult {

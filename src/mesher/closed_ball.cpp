@@ -44,17 +44,25 @@ const char* to_string(Violation v)
     return "?";
 }
 
-std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries)
+void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter& keep)
+{
+    if (!keep) return;
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](const Candidate& c) { return !keep(c.p); }),
+                     candidates.end());
+}
+
+std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries, const CandidateFilter& keep)
 {
     std::vector<Candidate> out;
     for (const auto& e : entries) {
         if (e.overflow) return {};
         if (e.crossings > 1) out.push_back(candidate_of(e, PointKind::Topology));
     }
+    filter_candidates(out, keep);
     return out;
 }
 
-ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps)
+ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps, const CandidateFilter& keep)
 {
     (void)dt;
     ViolationReport rep;
@@ -71,6 +79,7 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
     // CBP_VE: insert the crossing farthest from the dual triangle.
     for (const auto& e : active)
         if (e.crossings > 1) rep.candidates.push_back(candidate_of(e, PointKind::Topology));
+    filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) {
         rep.kind = Violation::VoronoiEdge;
         return rep;
@@ -84,6 +93,7 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
     // Facets with a grid vertex: M's vertices must be samples of Sigma.
     for (const auto* e : restricted)
         if (!e->all_on_surface) rep.candidates.push_back(candidate_of(*e, PointKind::Topology));
+    filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) {
         rep.kind = Violation::GridVertex;
         return rep;
@@ -179,6 +189,8 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
         std::sort(bad->begin(), bad->end());
         bad->erase(std::unique(bad->begin(), bad->end()), bad->end());
         for (std::size_t i : *bad) rep.candidates.push_back(candidate_of(*restricted[i], PointKind::Topology));
+        filter_candidates(rep.candidates, keep);
+        if (rep.candidates.empty()) continue;
         rep.kind = bad == &bad_edge_facets ? Violation::VoronoiFacet : Violation::VoronoiCell;
         return rep;
     }
@@ -186,6 +198,7 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
     // Step 5: geometric refinement.
     for (const auto* e : restricted)
         if (e->record->distance > eps) rep.candidates.push_back(candidate_of(*e, PointKind::Geometry));
+    filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) rep.kind = Violation::Epsilon;
     return rep;
 }

@@ -4,6 +4,7 @@
 // inserts one class at a time, highest priority first, and checks again.
 #include "mesher/restricted_facets.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,12 +40,22 @@ struct ViolationReport {
     std::size_t orphans = 0; ///< surface vertices without restricted facets
 };
 
-/// Looks for violations in priority order and returns those of the first class present.
-ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps);
+/// Which candidate points a run may insert: all when empty. A block of partitioned meshing
+/// (partitioned_meshing.h) refines only near its core; violations elsewhere are not its own.
+using CandidateFilter = std::function<bool(const Point&)>;
+
+/// Removes the candidates \p keep rejects.
+void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter& keep);
+
+/// Looks for violations in priority order and returns those of the first class present
+/// (a class whose candidates \p keep all rejects counts as absent).
+ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps,
+                                const CandidateFilter& keep = {});
 
 /// CBP_VE among \p entries only (e.g. FacetCache::recent()): the farthest crossing of every
 /// Voronoi edge crossing Sigma more than once. Empty when an entry overflowed (a hole in G is
 /// the driver's to repair first).
-std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries);
+std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries,
+                                               const CandidateFilter& keep = {});
 
 } // namespace isodel::mesher

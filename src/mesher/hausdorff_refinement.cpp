@@ -193,6 +193,10 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
             for (const auto& v : facet_vertices(e->facet))
                 spacing = std::min(spacing, std::sqrt(CGAL::squared_distance(v->point(), x)));
         }
+        if (keep_ && !keep_(x)) {
+            passed_.insert(e->key); // not ours (set_filter)
+            continue;
+        }
         out.push_back({x, PointKind::Geometry, spacing, e->key});
     }
     return out;
@@ -291,7 +295,11 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         }
     });
     std::vector<Candidate> out;
-    for (auto& v : found) out.insert(out.end(), v.begin(), v.end());
+    for (auto& v : found)
+        for (const Candidate& c : v) {
+            if (keep_ && !keep_(c.p)) crease_state_[c.origin.v[0]] = CreaseState::NoCrease; // not ours (set_filter)
+            else out.push_back(c);
+        }
     return out;
 }
 

@@ -41,6 +41,10 @@ public:
     /// Crease samples farther than the threshold from the triangles of \p restricted.
     std::vector<Candidate> crease_violations(const std::vector<const FacetCache::Entry*>& restricted);
 
+    /// Only candidates \p keep accepts are returned; a facet or crease cell whose candidate it
+    /// rejects is not this run's to refine and is not checked again (partitioned meshing).
+    void set_filter(CandidateFilter keep) { keep_ = std::move(keep); }
+
 private:
     const octree::SampleField& field_;
     double eps_;
@@ -53,6 +57,7 @@ private:
     enum class CreaseState : char { Unknown, NoCrease, Passed };
     std::vector<CreaseState> crease_state_;
     std::vector<std::vector<FacetKey>> crease_witness_;
+    CandidateFilter keep_;
 };
 
 } // namespace isodel::mesher

@@ -9,6 +9,8 @@
 #include "mesher/facet_loops.h"
 #include "mesher/grid_cell_check.h"
 #include "mesher/hausdorff_refinement.h"
+#include "mesher/mesh_field.h"
+#include "mesher/partitioned_meshing.h"
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
 #include "mesher/snap_edge_points.h"
@@ -40,6 +42,7 @@
 #include <sstream>
 
 namespace isodel {
+using namespace mesher;
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -54,12 +57,18 @@ std::size_t peak_memory_bytes()
 
 mesher::Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
-/// DELSURFMESH on \p grid's samples. With \p adaptive, \p grid is its exact resampling on the
-/// finest lattice (the F being meshed) and the point sets follow its leaves (adaptive_points.h).
-MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive,
-                      const MeshOptions& options, Interrupter* interrupter)
+} // namespace
+
+namespace mesher {
+
+Inside inside_side(const openvdb::FloatGrid& grid, const MeshOptions& options)
 {
-    using namespace mesher;
+    if (options.inside) return *options.inside;
+    return grid.getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above;
+}
+
+MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupter* interrupter)
+{
     const auto t_start = Clock::now();
     MeshResult result;
     MeshStats& st = result.stats;
@@ -71,12 +80,8 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                         std::size_t(options.threads));
 
-    const Inside inside = options.inside ? *options.inside
-                                         : (grid.getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below
-                                                                                           : Inside::Above);
-    // Share the grid without copying it: the field keeps a non-owning pointer for the call.
-    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
-    const octree::SampleField field(gptr, options.isovalue, inside);
+    const octree::SampleField& field = *run.field;
+    const octree::AdaptiveGrid* adaptive = run.adaptive;
     st.effective_isovalue = field.effective_isovalue();
     std::unique_ptr<octree::AdaptiveGrid::Reader> leaves;
     if (adaptive) leaves = std::make_unique<octree::AdaptiveGrid::Reader>(*adaptive);
@@ -142,11 +147,16 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
         tubes.insert(tubes.end(), necks.begin(), necks.end());
         st.n_topology += tubes.size();
         for (const auto& p : tubes) initial.push_back({to_point(field.index_to_world(p)), {id++, PointKind::Topology}});
+        for (const SeedPoint& s : run.seeds) {
+            ++(s.kind == PointKind::Geometry ? st.n_geometry : st.n_topology);
+            initial.push_back({Point(s.p[0], s.p[1], s.p[2]), {id++, s.kind}});
+        }
         g_mask = std::make_unique<openvdb::MaskGrid>();
         auto acc = g_mask->getAccessor();
         for (const auto& g : layer.points) acc.setValueOn(g);
     }
     st.seconds["points"] = since(t0);
+    if (st.e_points == 0 && run.inserted) return result; // a block Sigma misses
     if (st.e_points == 0) throw InvalidInput("the level set is empty: no grid edge crosses the isovalue");
 
     // Step 3: Del(E u G), spatially sorted insertion.
@@ -158,6 +168,7 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
         scope.check(100);
     }
     std::uint32_t next_id = std::uint32_t(initial.size());
+    const std::uint32_t first_inserted = next_id;
     initial.clear();
     initial.shrink_to_fit();
     st.seconds["delaunay"] = since(t0);
@@ -220,8 +231,10 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
     crease.trim = (tie_shifted ? 0.005 : 0.02) * eps / field.min_voxel_edge();
     FacetCache cache(crease);
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), snap_radius);
+    hausdorff.set_filter(run.keep);
     FacetLoopScanner loops;
     double t_topology = 0, t_refine = 0;
+    const std::size_t n_before_loops = st.n_topology + st.n_geometry;
     {
         InterruptScope scope(interrupter, "closed_ball");
         for (;;) {
@@ -254,8 +267,9 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
                                                [](const FacetCache::Entry& e) { return e.overflow; });
             ViolationReport rep;
             if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
+            filter_candidates(rep.candidates, run.keep);
             if (!rep.candidates.empty()) rep.kind = Violation::GridCell;
-            else rep = find_violations(dt, cache, eps);
+            else rep = find_violations(dt, cache, eps, run.keep);
             if (std::getenv("ISODEL_TRACE"))
                 std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
@@ -263,6 +277,7 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
             if (rep.kind == Violation::None) {
                 // Loops inside Voronoi facets (CBP_VF, second clause): once the cheaper checks pass.
                 rep.candidates = loops.scan(dt, field, max_cells_walk, crease.trim);
+                filter_candidates(rep.candidates, run.keep);
                 if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
             }
             if (rep.kind == Violation::None) {
@@ -270,7 +285,11 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
                 for (const auto& e : cache.active())
                     if (e.crossings == 1) restricted.push_back(&e);
                 rep.candidates = hausdorff.violations(restricted);
-                if (rep.candidates.empty()) rep.candidates = hausdorff.crease_violations(restricted);
+                filter_candidates(rep.candidates, run.keep);
+                if (rep.candidates.empty()) {
+                    rep.candidates = hausdorff.crease_violations(restricted);
+                    filter_candidates(rep.candidates, run.keep);
+                }
                 if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
             }
             if (rep.kind == Violation::None) break;
@@ -300,7 +319,7 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
             while (rep.kind == Violation::VoronoiEdge && over_bound.empty() &&
                    st.n_geometry + st.n_topology <= max_points) {
                 cache.update(dt, field, max_cells_walk);
-                const auto more = voronoi_edge_violations(cache.recent());
+                const auto more = voronoi_edge_violations(cache.recent(), run.keep);
                 if (more.empty()) break;
                 const InsertionResult next = insert_candidates(dt, cache, more, next_id, hash_cell);
                 if (next.inserted.empty()) break;
@@ -322,6 +341,10 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
                    << " inserted points) while fixing " << to_string(rep.kind) << ": guarantees not certified";
                 throw GuaranteeViolated(os.str());
             }
+            // A block (partitioned meshing) stops here: near its keep boundary some violations
+            // are a neighbour's, and the candidates left may be vertices already; the merge's
+            // own loop checks everything again.
+            if (ins.inserted.empty() && run.inserted) break;
             if (ins.inserted.empty()) {
                 std::ostringstream os;
                 os << "no progress fixing " << to_string(rep.kind) << " (" << rep.candidates.size()
@@ -333,6 +356,19 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
     }
     st.seconds["closed_ball"] = t_topology;
     st.seconds["refine"] = t_refine;
+    if (!run.seeds.empty()) st.partition.seam_points = st.n_topology + st.n_geometry - n_before_loops;
+    if (run.inserted) {
+        std::vector<std::pair<std::uint32_t, SeedPoint>> n;
+        for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+            const PointKind k = v->info().kind;
+            if (v->info().id >= first_inserted && (k == PointKind::Topology || k == PointKind::Geometry))
+                n.push_back({v->info().id, SeedPoint{{v->point().x(), v->point().y(), v->point().z()}, k}});
+        }
+        std::sort(n.begin(), n.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [id, p] : n) run.inserted->push_back(p);
+        st.seconds["total"] = since(t_start);
+        return result;
+    }
 
     result.surface = extract_surface(dt, cache);
     if (options.keep_points) {
@@ -363,11 +399,31 @@ MeshResult mesh_field(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid
     return result;
 }
 
+} // namespace mesher
+
+namespace {
+
+MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive, const MeshOptions& options,
+                     Interrupter* interrupter)
+{
+    // Share the grid without copying it: the field keeps a non-owning pointer for the call.
+    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
+    const octree::SampleField field(gptr, options.isovalue, inside_side(grid, options));
+    if (options.block_voxels > 0) {
+        if (adaptive) throw InvalidInput("partitioned meshing (block_voxels) is for dense grids only");
+        return mesh_partitioned(field, options, interrupter);
+    }
+    FieldRun run;
+    run.field = &field;
+    run.adaptive = adaptive;
+    return mesh_field(run, options, interrupter);
+}
+
 } // namespace
 
 MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
 {
-    return mesh_field(grid, nullptr, options, interrupter);
+    return mesh_grid(grid, nullptr, options, interrupter);
 }
 
 MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& options, Interrupter* interrupter)
@@ -377,7 +433,7 @@ MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& opti
     const octree::AdaptiveGrid g = octree::to_adaptive_grid(volume);
     const openvdb::FloatGrid::Ptr dense = octree::resample_dense(g);
     const double t_resample = since(t0);
-    MeshResult r = mesh_field(*dense, g.max_level() > 0 ? &g : nullptr, options, interrupter);
+    MeshResult r = mesh_grid(*dense, g.max_level() > 0 ? &g : nullptr, options, interrupter);
     r.stats.seconds["resample"] = t_resample;
     r.stats.seconds["total"] += t_resample;
     return r;

@@ -30,6 +30,12 @@ std::string to_json(const MeshStats& s)
           << ", \"triangles\": " << c.triangles << "}";
     }
     o << "]}";
+    if (s.partition.blocks > 0) {
+        const PartitionStats& p = s.partition;
+        o << ",\n  \"partition\": {\"blocks\": " << p.blocks << ", \"collar_voxels\": " << p.collar_voxels
+          << ", \"blocks_failed\": " << p.blocks_failed << ", \"block_points\": " << p.block_points
+          << ", \"seam_points\": " << p.seam_points << "}";
+    }
     const TetStats& t = s.tets;
     if (t.vertices > 0) {
         o << ",\n  \"tets\": {\"vertices\": " << t.vertices << ", \"tets_inside\": " << t.tets_inside

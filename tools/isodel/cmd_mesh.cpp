@@ -19,6 +19,7 @@ struct MeshCliOptions {
     double iso = 0, eps = 0, eps_voxels = 0.5;
     int threads = 0;
     int max_rounds = 2000;
+    int blocks = 0;
     std::size_t max_points = 0;
     bool quiet = false;
     bool snap = false;
@@ -47,6 +48,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     cmd->add_flag("--snap", o->snap,
                   "Snap the grid-edge crossings within eps/2 of a sample onto it, where at least three "
                   "gather (paper Section 5): fewer, better spaced points");
+    cmd->add_option("--blocks", o->blocks,
+                    "Partitioned meshing (paper Fig. 8): blocks of this many voxels per axis, meshed "
+                    "concurrently with protective collars, then merged (dense grids; 0 = off)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->callback([o, &exit_code] {
         if (!(o->eps >= 0) || !(o->eps_voxels > 0)) throw InvalidInput("--eps/--eps-voxels must be positive");
@@ -75,6 +80,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.max_rounds = o->max_rounds;
         mo.max_points = o->max_points;
         mo.snap = o->snap;
+        mo.block_voxels = o->blocks;
         if (!o->tets.empty())
             mo.tets = o->region == "both" ? TetRegion::Both
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
