@@ -40,22 +40,31 @@ std::array<int, 3> block_count(const octree::SampleField& field, int block_voxel
 }
 
 /// Calls the user's interrupter from worker threads one at a time (OpenVDB interrupters are
-/// not thread-safe), and remembers a cancellation so every block stops.
+/// not thread-safe). Blocks poll it through BlockInterrupter between their rounds, so a
+/// cancellation stops every block promptly (TBB rethrows the first Cancelled to the caller).
 class SharedInterrupter {
 public:
     explicit SharedInterrupter(Interrupter* intr) : intr_(intr) {}
-    bool cancelled() const { return cancelled_; }
-    void block_done(int done, int total)
+    bool poll(int percent)
     {
-        if (!intr_) return;
+        if (!intr_) return false;
         std::lock_guard<std::mutex> lock(mutex_);
-        if (intr_->wasInterrupted(int(100.0 * done / total))) cancelled_ = true;
+        return intr_->wasInterrupted(percent);
     }
 
 private:
     Interrupter* intr_;
     std::mutex mutex_;
-    std::atomic<bool> cancelled_{false};
+};
+
+/// What a block sees: no stages of its own, the shared cancellation.
+class BlockInterrupter final : public Interrupter {
+public:
+    explicit BlockInterrupter(SharedInterrupter& shared) : shared_(shared) {}
+    bool wasInterrupted(int) override { return shared_.poll(-1); }
+
+private:
+    SharedInterrupter& shared_;
 };
 
 } // namespace
@@ -89,7 +98,8 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
     return out;
 }
 
-std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockSpec& block, const MeshOptions& options)
+std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockSpec& block, const MeshOptions& options,
+                                  Interrupter* interrupter)
 {
     openvdb::CoordBBox box = block.box;
     box.intersect(field.domain());
@@ -116,7 +126,7 @@ std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockS
         const openvdb::Vec3d q = field.world_to_index({p.x(), p.y(), p.z()});
         return q[0] >= lo[0] && q[1] >= lo[1] && q[2] >= lo[2] && q[0] <= hi[0] && q[1] <= hi[1] && q[2] <= hi[2];
     };
-    mesh_field(run, bo, nullptr);
+    mesh_field(run, bo, interrupter);
     // Keep what the block owns: points whose cell lies in its core (block_of clamps the ring).
     const openvdb::Coord o = field.domain().min();
     const int bv = block.core.dim()[0];
@@ -149,20 +159,19 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
         // One task per block: blocks are independent, their results land in their own slot,
         // so the merge order (block index) does not depend on scheduling.
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& range) {
+            BlockInterrupter block_interrupter(shared);
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                if (shared.cancelled()) return;
                 try {
-                    points[i] = mesh_block(field, blocks[i], options);
+                    points[i] = mesh_block(field, blocks[i], options, &block_interrupter);
                 } catch (const GuaranteeViolated& e) {
                     if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "block %zu: %s\n", i, e.what());
                     // A bound stopped the block: the merge's own loop does its work instead.
                     failed[i] = 1;
                     points[i].clear();
                 }
-                shared.block_done(++done, int(blocks.size()));
+                if (shared.poll(int(100.0 * ++done / double(blocks.size())))) throw Cancelled("interrupted");
             }
         });
-        if (shared.cancelled()) throw Cancelled("interrupted");
     }
     const double t_blocks = std::chrono::duration<double>(Clock::now() - t0).count();
 

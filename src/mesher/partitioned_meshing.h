@@ -9,14 +9,19 @@
 // meet Sigma, and where - depends only on the samples and points within about 2r + 1 voxels
 // of the core. A block therefore sees Sigma through a SampleField clipped to core + collar
 // (collar 2r + 2 voxels; beyond it F is "outside", which closes Sigma along the box, far from
-// the core) and keeps only the points its refinement inserted inside its core.
+// the core). It fixes only violations whose point lies within one voxel of its core
+// (FieldRun::keep): refining the collar, or the creases where the clipped Sigma meets the box,
+// is a neighbour's work or nobody's. It stops when nothing is left to fix there, or when its
+// last candidates are vertices already (a neighbour's violation seen from the edge), and keeps
+// only the points it inserted inside its core.
 //
 // Why the merge has no seams: the merge is not a stitching of block surfaces. It runs the
 // whole DELSURFMESH loop (closed ball, then eps) on Del(E u G u N_blocks) over the full field,
 // so every guarantee is checked on the merged triangulation; what the blocks could not see
 // (points of a neighbour's core within the collar) shows up as the few violations along the
 // block faces, which the merge fixes like any other (PartitionStats::seam_points). The merge
-// costs one Delaunay triangulation plus one pass of checks; the blocks carry the refinement.
+// costs one Delaunay triangulation plus one full pass of checks (measured: as much as the
+// blocks save, README "Partitioned meshing"); the blocks carry the refinement.
 //
 // Self-contained blocks (so they can later run on separate machines): a block's input is its
 // box of samples (BlockSpec::box) with the field's level v* and outside value, and its
@@ -46,8 +51,9 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
 
 /// Meshes \p block alone (the surface phase of DELSURFMESH on field clipped to block.box) and
 /// returns the N points its loops inserted in the cells of block.core, in insertion order.
+/// \p interrupter is only asked wasInterrupted() (blocks run concurrently).
 std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockSpec& block,
-                                  const MeshOptions& options);
+                                  const MeshOptions& options, Interrupter* interrupter = nullptr);
 
 /// Partitioned DELSURFMESH: blocks concurrently (TBB), then the merge described above.
 /// Output depends on options.block_voxels, never on the thread count.

@@ -9,6 +9,7 @@
 
 #include <isodel/errors.h>
 
+#include <atomic>
 #include <cmath>
 #include <map>
 
@@ -144,3 +145,20 @@ TEST_CASE("partitioned meshing refuses adaptive grids and bad block sizes", "[me
     CHECK_THROWS_AS(mesher::partition_domain(field, 0, {4, 4, 4}), InvalidInput);
 }
 
+
+TEST_CASE("partitioned meshing stops when the interrupter asks, from inside the blocks", "[mesher][partition]")
+{
+    // Counts the calls and cancels at the third: the blocks' own rounds poll it (thread-safely),
+    // so the run stops before the merge.
+    struct CancelAt final : Interrupter {
+        std::atomic<int> calls{0};
+        bool wasInterrupted(int) override { return ++calls >= 3; }
+    } intr;
+    const auto grid = torus_grid();
+    MeshOptions mo;
+    mo.isovalue = 0.0;
+    mo.inside = Inside::Above;
+    mo.block_voxels = 8;
+    CHECK_THROWS_AS(mesh_isosurface(*grid, mo, &intr), Cancelled);
+    CHECK(intr.calls >= 3);
+}
