@@ -22,14 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Block lattice coordinate of index position \p q along \p axis (clamped: points on the ring
-/// beyond the first or last cell belong to the outermost blocks).
-int block_of(double q, int axis, const openvdb::Coord& origin, int block_voxels, const std::array<int, 3>& count)
-{
-    const int b = int(std::floor((q - origin[axis]) / block_voxels));
-    return std::clamp(b, 0, count[axis] - 1);
-}
-
 std::array<int, 3> block_count(const octree::SampleField& field, int block_voxels)
 {
     const openvdb::CoordBBox& d = field.domain();
@@ -93,6 +85,11 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
                 b.box = openvdb::CoordBBox(lo.offsetBy(-collar[0], -collar[1], -collar[2]),
                                            lo.offsetBy(block_voxels + collar[0], block_voxels + collar[1],
                                                        block_voxels + collar[2]));
+                const int index[3] = {x, y, z};
+                for (int a = 0; a < 3; ++a) {
+                    b.own_lo[a] = index[a] == 0 ? -HUGE_VAL : lo[a];
+                    b.own_hi[a] = index[a] == n[a] - 1 ? HUGE_VAL : lo[a] + block_voxels;
+                }
                 out.push_back(b);
             }
     return out;
@@ -127,15 +124,12 @@ std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockS
         return q[0] >= lo[0] && q[1] >= lo[1] && q[2] >= lo[2] && q[0] <= hi[0] && q[1] <= hi[1] && q[2] <= hi[2];
     };
     mesh_field(run, bo, interrupter);
-    // Keep what the block owns: points whose cell lies in its core (block_of clamps the ring).
-    const openvdb::Coord o = field.domain().min();
-    const int bv = block.core.dim()[0];
-    const std::array<int, 3> n = block_count(field, bv);
+    // Keep what the block owns (BlockSpec::own_lo/own_hi: its core's cells).
     std::vector<SeedPoint> owned;
     for (const SeedPoint& s : inserted) {
         const openvdb::Vec3d q = field.world_to_index({s.p[0], s.p[1], s.p[2]});
         bool mine = true;
-        for (int a = 0; a < 3 && mine; ++a) mine = block_of(q[a], a, o, bv, n) == block.index[a];
+        for (int a = 0; a < 3 && mine; ++a) mine = q[a] >= block.own_lo[a] && q[a] < block.own_hi[a];
         if (mine) owned.push_back(s);
     }
     return owned;
@@ -167,7 +161,6 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
                     if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "block %zu: %s\n", i, e.what());
                     // A bound stopped the block: the merge's own loop does its work instead.
                     failed[i] = 1;
-                    points[i].clear();
                 }
                 if (shared.poll(int(100.0 * ++done / double(blocks.size())))) throw Cancelled("interrupted");
             }

@@ -39,6 +39,9 @@ struct BlockSpec {
     std::array<int, 3> index{};  ///< position in the block lattice
     openvdb::CoordBBox core;     ///< the cells the block owns (lower corners, inclusive)
     openvdb::CoordBBox box;      ///< the samples it reads: core's samples grown by the collar
+    /// The points it keeps, in index space: own_lo <= q < own_hi per axis. The core's cells,
+    /// unbounded on the domain's outer faces (points on the ring belong to the outermost blocks).
+    openvdb::Vec3d own_lo, own_hi;
 };
 
 /// The protective collar, in voxels per axis, for \p field: 2r + 2 with r the layer radius.
