@@ -1,8 +1,11 @@
 #include "octree/sample_field.h"
 
+#include "octree/critical_values.h"
+
 #include <isodel/errors.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -49,32 +52,41 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
         if (!ring_reads_background_ && !lattice_.hasOverlap(it.getBoundingBox())) continue;
         consider(*it);
     }
-    // Bilinear saddles of cell faces exactly at v (e.g. corners (1,-1,-1,1) at v = 0) make Sigma
-    // non-manifold just like a sample at v; they follow the same rule (Sigma is the limit from
-    // below), and saddles just below v bound the shift like samples do. Only faces whose corners
-    // straddle v can hold one. (Saddles inside a cell are not considered.)
+    // Critical values of the faces and cells (critical_values.h) bound the shift like samples do:
+    // {F >= t} changes topology only at them, so v* = v - d with d below the gap has the topology
+    // of the limit. A bilinear face saddle exactly at v (corners (1,-1,-1,1) at v = 0) makes Sigma
+    // non-manifold just like a sample at v and follows the same rule; so does a cell's interior
+    // saddle; both within rounding of v (a quotient, a square root). Only faces and cells
+    // whose corners straddle v matter: otherwise a corner sample is nearer to v than the saddle.
     {
+        const double round_off = 1e-12 * std::max(1.0, std::abs(isovalue));
+        auto critical = [&](double f) {
+            if (std::abs(f - isovalue) <= round_off) tie = true;
+            else if (f < isovalue) gap = std::min(gap, isovalue - f);
+        };
         auto acc = grid_->getConstAccessor();
         for (auto it = grid_->cbeginValueOn(); it; ++it) {
             if (!it.isVoxelValue()) continue;
             const Coord c = it.getCoord();
-            const double a = *it;
+            // A face or cell reaching into a ring that reads as outside is not one of F's samples.
+            const bool whole_cell = ring_reads_background_ || lattice_.isInside(c.offsetBy(1));
+            std::array<double, 8> f;
+            for (int n = 0; n < 8; ++n) f[n] = acc.getValue(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1));
             for (int axis = 0; axis < 3; ++axis) {
-                Coord e1(0, 0, 0), e2(0, 0, 0);
-                e1[(axis + 1) % 3] = 1;
-                e2[(axis + 2) % 3] = 1;
-                // A face reaching into a ring that reads as outside is not a face of F's samples.
-                if (!ring_reads_background_ && !lattice_.isInside(c + e1 + e2)) continue;
-                const double b = acc.getValue(c + e1), cc = acc.getValue(c + e2), d = acc.getValue(c + e1 + e2);
+                const int e1 = 1 << ((axis + 1) % 3), e2 = 1 << ((axis + 2) % 3); // corner bits
+                if (!ring_reads_background_ && !lattice_.isInside(c.offsetBy((e1 | e2) & 1, ((e1 | e2) >> 1) & 1, (e1 | e2) >> 2)))
+                    continue;
+                const double a = f[0], b = f[e1], cc = f[e2], d = f[e1 | e2];
                 if (std::min({a, b, cc, d}) > isovalue || std::max({a, b, cc, d}) < isovalue) continue;
-                const double den = a - b - cc + d;
-                if (den == 0) continue;
-                const double u = (a - cc) / den, w = (a - b) / den;
-                if (!(u > 0 && u < 1 && w > 0 && w < 1)) continue;
-                const double num = a * d - b * cc;
-                if (num == isovalue * den) tie = true;
-                else if (num / den < isovalue) gap = std::min(gap, isovalue - num / den);
+                double s;
+                if (face_saddle_value(a, b, cc, d, s)) critical(s);
             }
+            if (!whole_cell) continue;
+            const auto [lo, hi] = std::minmax_element(f.begin(), f.end());
+            if (*lo > isovalue || *hi < isovalue) continue;
+            CellCritical points[2];
+            const int np = cell_critical_points(f, points);
+            for (int k = 0; k < np; ++k) critical(points[k].value);
         }
     }
     vmin_ = vmin;
@@ -87,8 +99,8 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
     }
     if (tie) {
         const double span = vmax - vmin;
-        double d = std::min(0.5 * gap, 1e-3 * span);
-        if (!(d > 0)) d = 1e-3 * span;
+        double d = std::min(0.5 * gap, 1e-2 * span);
+        if (!(d > 0)) d = 1e-2 * span;
         effective_ = isovalue - d;
     }
     // Outside samples sit clearly on the outside side.
