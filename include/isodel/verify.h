@@ -58,6 +58,9 @@ struct VerifyComponent {
 struct ReferenceTopologyReport {
     bool determined = false;
     std::size_t crossed_cells = 0;          ///< cells of the grid with mixed phi signs
+    /// Lattice planes added through near-critical points of F (saddles within a small fraction of
+    /// their cell's value range of v), on top of the uniform R x refinement.
+    std::size_t critical_planes = 0;
     /// Each refinement tried, with the sorted genera it produced.
     std::vector<int> refinements;
     std::vector<std::vector<int>> genera;

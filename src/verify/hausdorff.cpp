@@ -151,7 +151,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
         Accum acc;
         double spacing = 0.0;
     };
-    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), CellRefiner(kLocalR), {}, 0.0}; });
+    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), CellRefiner(kLocalR, nullptr, base), {}, 0.0}; });
 
     auto local_search = [&](Local2& L, const Vec3d& p, double r, double& best) {
         // Conservative index box of the world ball B(p, r): image of its world bounding box.
@@ -175,7 +175,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
                 for (int i = int(std::floor(lo[0])); i <= int(std::floor(hi[0])); ++i) {
                     const Coord c(i, j, k);
                     if (c[0] < base[0] || c[1] < base[1] || c[2] < base[2] || !crossed.count(cell_key(c, base))) continue;
-                    L.refiner.run(L.ev.reader(), c, base, [&](const RefTriangle& t) {
+                    L.refiner.run(L.ev.reader(), c, [&](const RefTriangle& t) {
                         const Vec3d q = geometry::closest_on_triangle(p, field.to_world(t.pos[0]), field.to_world(t.pos[1]),
                                                             field.to_world(t.pos[2]));
                         for (int v = 0; v < 3; ++v) {

@@ -4,6 +4,8 @@
 // chi = V - E + F = V - F/2 per component (the surface is closed, every edge has two triangles).
 #include "verify/refined_lattice.h"
 
+#include "octree/critical_values.h"
+
 #include <isodel/errors.h>
 #include <isodel/verify.h>
 
@@ -11,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 namespace isodel::verify {
 namespace {
@@ -82,17 +85,92 @@ struct UnionFind {
     }
 };
 
+/// Planes through the near-critical points of F in the crossed cells (refined_lattice.h): cell
+/// saddles and face saddles whose phi is within kNearCritical of the cell's phi range from 0.
+/// At most \p max_per_slab per slab, nearest to v first; none closer than 1e-9 to another plane
+/// (or to a uniform plane k/R for R in 1..128 - a sub-cell that thin adds nothing).
+/// Sharing octree/critical_values.h with the tie rule is safe: a misplaced plane cannot change
+/// the reference's topology, only fail to sharpen it.
+SlabPlanes near_critical_planes(const TrilinearField& field, const std::vector<Coord>& cells, const Coord& base,
+                                int max_per_slab)
+{
+    constexpr double kNearCritical = 2e-3;
+    struct Candidate {
+        double closeness; // |phi| / cell range
+        int axis;
+        std::int64_t slab;
+        double t;
+    };
+    std::vector<Candidate> cand;
+    octree::SampleField::Reader reader(field.samples());
+    for (const Coord& c : cells) {
+        double phi[8];
+        reader.cell_corners(c, phi);
+        std::array<double, 8> f;
+        std::copy(phi, phi + 8, f.begin());
+        const auto [lo, hi] = std::minmax_element(f.begin(), f.end());
+        const double range = *hi - *lo;
+        if (!(range > 0)) continue;
+        auto add = [&](double value, const double pos[3], const bool on_axis[3]) {
+            const double closeness = std::abs(value) / range;
+            if (!(closeness < kNearCritical)) return;
+            for (int a = 0; a < 3; ++a)
+                if (on_axis[a]) cand.push_back({closeness, a, std::int64_t(c[a] - base[a]), pos[a]});
+        };
+        octree::CellCritical pts[2];
+        const int np = octree::cell_critical_points(f, pts);
+        const bool all[3] = {true, true, true};
+        for (int k = 0; k < np; ++k) {
+            const double pos[3] = {pts[k].x, pts[k].y, pts[k].z};
+            add(pts[k].value, pos, all);
+        }
+        // Faces perpendicular to axis a at offset 0 and 1; (p, q) = the other two axes.
+        for (int a = 0; a < 3; ++a) {
+            const int p = (a + 1) % 3, q = (a + 2) % 3;
+            for (int side = 0; side < 2; ++side) {
+                const int b0 = side << a, bp = 1 << p, bq = 1 << q;
+                double u, w, value;
+                if (!octree::face_saddle(f[b0], f[b0 | bp], f[b0 | bq], f[b0 | bp | bq], u, w, value)) continue;
+                double pos[3];
+                pos[a] = side;
+                pos[p] = u;
+                pos[q] = w;
+                bool on_axis[3] = {true, true, true};
+                on_axis[a] = false;
+                add(value, pos, on_axis);
+            }
+        }
+    }
+    std::sort(cand.begin(), cand.end(), [](const Candidate& x, const Candidate& y) {
+        return std::tie(x.closeness, x.axis, x.slab, x.t) < std::tie(y.closeness, y.axis, y.slab, y.t);
+    });
+    SlabPlanes planes;
+    for (const Candidate& k : cand) {
+        auto& slabs = planes.extra[std::size_t(k.axis)];
+        if (k.slab < 0) continue;
+        if (slabs.size() <= std::size_t(k.slab)) slabs.resize(std::size_t(k.slab) + 1);
+        auto& slab = slabs[std::size_t(k.slab)];
+        if (int(slab.size()) >= max_per_slab) continue;
+        bool clear = true;
+        for (double t : slab) clear = clear && std::abs(t - k.t) > 1e-9;
+        for (int R = 1; R <= 128 && clear; ++R) clear = std::abs(k.t * R - std::round(k.t * R)) > 1e-9 * R;
+        if (!clear) continue;
+        slab.insert(std::upper_bound(slab.begin(), slab.end(), k.t), k.t);
+    }
+    return planes;
+}
+
 /// Components of the marching-tetrahedra surface at refinement R, sorted by (genus, triangles).
 std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std::vector<Coord>& cells,
-                                         const Coord& base, int R)
+                                         const Coord& base, int R, const SlabPlanes& planes)
 {
     KeyMap ids;
     UnionFind uf;
     std::vector<std::int32_t> tri_vertex; // one vertex per triangle, to count F per component
-    CellRefiner refiner(R);
+    CellRefiner refiner(R, &planes, base);
     octree::SampleField::Reader reader(field.samples());
     for (const Coord& c : cells) {
-        refiner.run(reader, c, base, [&](const RefTriangle& t) {
+        refiner.run(reader, c, [&](const RefTriangle& t) {
             std::int32_t v[3];
             for (int q = 0; q < 3; ++q) {
                 v[q] = ids.get(t.key[q], std::int32_t(uf.p.size()));
@@ -138,6 +216,8 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
     Coord base;
     const std::vector<Coord> cells = crossed_cells(field, base);
     rep.crossed_cells = cells.size();
+    const SlabPlanes planes = near_critical_planes(field, cells, base, 16);
+    rep.critical_planes = planes.count();
     // R, 2R, then (if they disagree) keep doubling while within max_refine: near-critical data
     // (a saddle value close to v) needs a finer lattice before the PL surface settles.
     // R itself is raised above \p refine while the 2R level stays within \p budget sub-lattice
@@ -146,11 +226,11 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
     // small volumes can afford much finer lattices.
     const double per_cell = budget / double(std::max<std::size_t>(cells.size(), 1));
     refine = std::max(refine, std::min(16, int(std::floor(std::cbrt(per_cell) / 2.0))));
-    std::vector<VerifyComponent> prev = topology_at(field, cells, base, refine);
+    std::vector<VerifyComponent> prev = topology_at(field, cells, base, refine, planes);
     rep.refinements.push_back(refine);
     rep.genera.push_back(genera(prev));
     for (int R = 2 * refine;; R *= 2) {
-        std::vector<VerifyComponent> cur = topology_at(field, cells, base, R);
+        std::vector<VerifyComponent> cur = topology_at(field, cells, base, R, planes);
         rep.refinements.push_back(R);
         rep.genera.push_back(genera(cur));
         if (rep.genera[rep.genera.size() - 2] == rep.genera.back()) {

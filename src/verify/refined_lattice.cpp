@@ -2,6 +2,8 @@
 
 #include <isodel/errors.h>
 
+#include <algorithm>
+
 namespace isodel::verify {
 
 std::vector<Coord> crossed_cells(const TrilinearField& field, Coord& base)
@@ -31,36 +33,68 @@ std::vector<Coord> crossed_cells(const TrilinearField& field, Coord& base)
                     n += inside[std::size_t((i + (c & 1)) + nx * ((j + ((c >> 1) & 1)) + ny * (k + ((c >> 2) & 1))))];
                 if (n != 0 && n != 8) cells.emplace_back(int(lo[0] + i), int(lo[1] + j), int(lo[2] + k));
             }
-    const std::int64_t extent = std::max({nx, ny, nz});
-    if (extent * 64 >= (std::int64_t(1) << 20))
-        throw InvalidInput("verify: volume too large for the 20-bit sub-lattice edge keys");
     return cells;
 }
 
-CellRefiner::CellRefiner(int R) : R_(R), n_(R + 1), v_(std::size_t(n_) * n_ * n_)
+std::size_t SlabPlanes::count() const
 {
-    if (R < 1 || R > 64) throw InvalidInput("verify: refinement must be in [1, 64]");
+    std::size_t n = 0;
+    for (const auto& axis : extra)
+        for (const auto& slab : axis) n += slab.size();
+    return n;
+}
+
+CellRefiner::CellRefiner(int R, const SlabPlanes* planes, const Coord& base) : R_(R), planes_(planes), base_(base)
+{
+    if (R < 1 || R > 128) throw InvalidInput("verify: refinement must be in [1, 128]");
+    for (int a = 0; a < 3; ++a) {
+        // offset_[a][s]: planes of the slabs before s (R each, plus their extra planes).
+        const std::size_t slabs = planes ? planes->extra[std::size_t(a)].size() : 0;
+        offset_[std::size_t(a)].assign(slabs + 1, 0);
+        for (std::size_t sl = 0; sl < slabs; ++sl)
+            offset_[std::size_t(a)][sl + 1] =
+                offset_[std::size_t(a)][sl] + R + std::int64_t(planes->extra[std::size_t(a)][sl].size());
+    }
 }
 
 void CellRefiner::sample(const octree::SampleField::Reader& reader, const Coord& cell)
 {
+    // This cell's planes: k/R, merged with the slab's extra planes.
+    for (int a = 0; a < 3; ++a) {
+        const auto& off = offset_[std::size_t(a)];
+        const std::int64_t slab = std::int64_t(cell[a] - base_[a]);
+        const std::int64_t last = std::int64_t(off.size()) - 1;
+        g_[std::size_t(a)] = slab <= last ? off[std::size_t(slab)] : off[std::size_t(last)] + (slab - last) * R_;
+        auto& t = t_[std::size_t(a)];
+        t.clear();
+        for (int k = 0; k <= R_; ++k) t.push_back(double(k) / R_);
+        if (planes_ && slab >= 0 && slab < last) {
+            const auto& extra = planes_->extra[std::size_t(a)][std::size_t(slab)];
+            std::vector<double> merged(t.size() + extra.size());
+            std::merge(t.begin(), t.end(), extra.begin(), extra.end(), merged.begin());
+            t = std::move(merged);
+        }
+        n_[a] = int(t.size());
+    }
+    v_.resize(std::size_t(n_[0]) * std::size_t(n_[1]) * std::size_t(n_[2]));
     double c[8];
     reader.cell_corners(cell, c); // index i + 2j + 4k
     // x first, then y, then z; (1-t) a + t b is exact at t = 0 and t = 1 (see header).
-    std::vector<double> ex(4 * std::size_t(n_)); // the 4 x-edges, indexed by (j + 2k)
+    const int nx = n_[0], ny = n_[1], nz = n_[2];
+    std::vector<double> ex(4 * std::size_t(nx)); // the 4 x-edges, indexed by (j + 2k)
     for (int e = 0; e < 4; ++e)
-        for (int x = 0; x <= R_; ++x) {
-            const double t = double(x) / R_;
-            ex[std::size_t(e * n_ + x)] = (1.0 - t) * c[2 * e] + t * c[2 * e + 1];
+        for (int x = 0; x < nx; ++x) {
+            const double t = t_[0][std::size_t(x)];
+            ex[std::size_t(e * nx + x)] = (1.0 - t) * c[2 * e] + t * c[2 * e + 1];
         }
-    for (int z = 0; z <= R_; ++z) {
-        const double tz = double(z) / R_;
-        for (int y = 0; y <= R_; ++y) {
-            const double ty = double(y) / R_;
-            for (int x = 0; x <= R_; ++x) {
-                const double y0 = (1.0 - ty) * ex[std::size_t(0 * n_ + x)] + ty * ex[std::size_t(1 * n_ + x)];
-                const double y1 = (1.0 - ty) * ex[std::size_t(2 * n_ + x)] + ty * ex[std::size_t(3 * n_ + x)];
-                v_[std::size_t(x + n_ * (y + n_ * z))] = (1.0 - tz) * y0 + tz * y1;
+    for (int z = 0; z < nz; ++z) {
+        const double tz = t_[2][std::size_t(z)];
+        for (int y = 0; y < ny; ++y) {
+            const double ty = t_[1][std::size_t(y)];
+            for (int x = 0; x < nx; ++x) {
+                const double y0 = (1.0 - ty) * ex[std::size_t(0 * nx + x)] + ty * ex[std::size_t(1 * nx + x)];
+                const double y1 = (1.0 - ty) * ex[std::size_t(2 * nx + x)] + ty * ex[std::size_t(3 * nx + x)];
+                v_[std::size_t(x + nx * (y + ny * z))] = (1.0 - tz) * y0 + tz * y1;
             }
         }
     }

@@ -11,11 +11,22 @@
 // combinatorially by sub-lattice edge, so an exact zero never glues two sheets).
 // As R grows the PL surface converges to Sigma; when R and 2R give the same topology we take it.
 //
+// Near-critical data: a saddle of F whose value is within delta of v opens or closes a neck of
+// radius ~sqrt(delta) voxel, which a uniform lattice resolves only once 1/R^2 << delta (random
+// volumes hold saddles within 1e-5 of v). The lattice therefore also gets planes through every
+// near-critical point (SlabPlanes): the saddle is then a lattice vertex whose sign is exact, and
+// around it the quadratic part of F dominates the link, so the PL neck opens or closes with F's.
+// Planes are global per slab of cells, so shared faces are subdivided alike and every sub-box is
+// still an exact trilinear piece of F.
+//
 // Sub-lattice values are computed by successive linear interpolation along x, then y, then z,
 // in the form (1-t) a + t b: at t = 0 or 1 this returns a or b exactly, so a point on a face or
 // edge shared by two cells gets bit-identical values from both cells (consistent signs).
 #include "verify/trilinear_field.h"
 
+#include <isodel/errors.h>
+
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -41,43 +52,61 @@ struct RefTriangle {
     Vec3d pos[3];
 };
 
-/// Marching tetrahedra over one cell at refinement R. Reusable (keeps its buffers).
+/// Extra sub-lattice planes: extra[axis][s] holds sorted coordinates in (0, 1) of planes in the
+/// slab of cells whose lowest corner along \p axis is base[axis] + s.
+struct SlabPlanes {
+    std::array<std::vector<std::vector<double>>, 3> extra;
+    /// Number of planes added (over all slabs and axes).
+    std::size_t count() const;
+};
+
+/// Marching tetrahedra over one cell at refinement R (plus any SlabPlanes). Reusable (keeps its
+/// buffers).
 class CellRefiner {
 public:
-    explicit CellRefiner(int R);
+    /// \p planes, if not null, must outlive the refiner; \p base is crossed_cells()'s.
+    explicit CellRefiner(int R, const SlabPlanes* planes = nullptr, const Coord& base = Coord(0));
     int refine() const { return R_; }
     /// Samples the cell with lowest corner \p cell (corner phi from \p reader), then calls
-    /// emit(const RefTriangle&) for every triangle. \p base: see crossed_cells().
+    /// emit(const RefTriangle&) for every triangle (edge keys relative to the constructor's base).
     template <class Emit>
-    void run(const octree::SampleField::Reader& reader, const Coord& cell, const Coord& base, Emit&& emit);
+    void run(const octree::SampleField::Reader& reader, const Coord& cell, Emit&& emit);
     /// Sub-lattice crossing points only (no triangles), each edge once per cell; for sampling Sigma.
     template <class Emit>
     void crossings(const octree::SampleField::Reader& reader, const Coord& cell, Emit&& emit);
 
 private:
     void sample(const octree::SampleField::Reader& reader, const Coord& cell);
-    double val(int x, int y, int z) const { return v_[x + n_ * (y + n_ * z)]; }
-    int R_, n_;
+    double val(int x, int y, int z) const { return v_[std::size_t(x + n_[0] * (y + n_[1] * z))]; }
+    Vec3d at(int x, int y, int z) const { return Vec3d(t_[0][std::size_t(x)], t_[1][std::size_t(y)], t_[2][std::size_t(z)]); }
+    int R_;
+    const SlabPlanes* planes_;
+    Coord base_;
+    std::array<std::vector<std::int64_t>, 3> offset_; // global sub-lattice index of each slab's first plane
+    std::array<std::vector<double>, 3> t_;            // this cell's plane coordinates, 0 ... 1
+    std::array<std::int64_t, 3> g_{};                 // this cell's global sub-lattice offset
+    int n_[3] = {0, 0, 0};                            // planes per axis (sub-cells + 1)
     std::vector<double> v_;
 };
 
 // ---- implementation (templates) ----
 
 template <class Emit>
-void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& cell, const Coord& base, Emit&& emit)
+void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& cell, Emit&& emit)
 {
     sample(reader, cell);
     // Freudenthal tetrahedra: chains 0 -> e_a -> e_a + e_b -> 7 over the 6 axis orders.
     static const int kTets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
                                     {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
-    const std::int64_t gx = std::int64_t(cell[0] - base[0]) * R_;
-    const std::int64_t gy = std::int64_t(cell[1] - base[1]) * R_;
-    const std::int64_t gz = std::int64_t(cell[2] - base[2]) * R_;
+    const std::int64_t gx = g_[0], gy = g_[1], gz = g_[2];
+    for (int a = 0; a < 3; ++a) // edge keys hold 20 bits per coordinate (crossings() needs none)
+        if (g_[std::size_t(a)] < 0 || g_[std::size_t(a)] + n_[a] >= (std::int64_t(1) << 20))
+            throw InvalidInput("verify: volume too large for the 20-bit sub-lattice edge keys at this refinement");
     double cv[8];
     bool in[8];
-    for (int z = 0; z < R_; ++z)
-        for (int y = 0; y < R_; ++y)
-            for (int x = 0; x < R_; ++x) {
+    for (int z = 0; z + 1 < n_[2]; ++z)
+        for (int y = 0; y + 1 < n_[1]; ++y)
+            for (int x = 0; x + 1 < n_[0]; ++x) {
                 int nin = 0;
                 for (int n = 0; n < 8; ++n) {
                     cv[n] = val(x + (n & 1), y + ((n >> 1) & 1), z + ((n >> 2) & 1));
@@ -92,10 +121,10 @@ void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& ce
                                    unsigned(u ^ v));
                     const double a = cv[u], b = cv[v];
                     const double t = a / (a - b);
-                    const Vec3d pu(x + (u & 1), y + ((u >> 1) & 1), z + ((u >> 2) & 1));
-                    const Vec3d pv(x + (v & 1), y + ((v >> 1) & 1), z + ((v >> 2) & 1));
+                    const Vec3d pu = at(x + (u & 1), y + ((u >> 1) & 1), z + ((u >> 2) & 1));
+                    const Vec3d pv = at(x + (v & 1), y + ((v >> 1) & 1), z + ((v >> 2) & 1));
                     const Vec3d p = pu + (pv - pu) * t;
-                    pos = Vec3d(cell[0] + p[0] / R_, cell[1] + p[1] / R_, cell[2] + p[2] / R_);
+                    pos = Vec3d(cell[0] + p[0], cell[1] + p[1], cell[2] + p[2]);
                 };
                 for (const auto& tet : kTets) {
                     int ins[4], outs[4], ni = 0, no = 0;
@@ -129,18 +158,18 @@ void CellRefiner::crossings(const octree::SampleField::Reader& reader, const Coo
     sample(reader, cell);
     static const int kDirs[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0},
                                     {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
-    for (int z = 0; z <= R_; ++z)
-        for (int y = 0; y <= R_; ++y)
-            for (int x = 0; x <= R_; ++x) {
+    for (int z = 0; z < n_[2]; ++z)
+        for (int y = 0; y < n_[1]; ++y)
+            for (int x = 0; x < n_[0]; ++x) {
                 const double a = val(x, y, z);
                 for (const auto& d : kDirs) {
                     const int X = x + d[0], Y = y + d[1], Z = z + d[2];
-                    if (X > R_ || Y > R_ || Z > R_) continue;
+                    if (X >= n_[0] || Y >= n_[1] || Z >= n_[2]) continue;
                     const double b = val(X, Y, Z);
                     if ((a >= 0) == (b >= 0)) continue;
                     const double t = a / (a - b);
-                    emit(Vec3d(cell[0] + (x + t * d[0]) / R_, cell[1] + (y + t * d[1]) / R_,
-                               cell[2] + (z + t * d[2]) / R_));
+                    const Vec3d pa = at(x, y, z), pb = at(X, Y, Z);
+                    emit(Vec3d(cell[0], cell[1], cell[2]) + pa + (pb - pa) * t);
                 }
             }
 }

@@ -67,7 +67,7 @@ std::string VerifyReport::to_json() const
     o << "{\n  \"passed\": " << yn(passed()) << ",\n  \"effective_isovalue\": " << num(effective_isovalue)
       << ",\n  \"inside\": " << str(inside) << ",\n  \"voxel\": " << num(voxel);
     o << ",\n  \"reference\": {\"determined\": " << yn(reference.determined)
-      << ", \"crossed_cells\": " << reference.crossed_cells << ", \"refinements\": " << ints(reference.refinements)
+      << ", \"crossed_cells\": " << reference.crossed_cells << ", \"critical_planes\": " << reference.critical_planes << ", \"refinements\": " << ints(reference.refinements)
       << ", \"genera\": [";
     for (std::size_t i = 0; i < reference.genera.size(); ++i) o << (i ? ", " : "") << ints(reference.genera[i]);
     o << "], \"components\": " << comps(reference.components) << ", \"seconds\": " << num(reference.seconds) << "}";
@@ -130,7 +130,8 @@ std::string VerifyReport::summary() const
     auto verdict = [](bool ok) { return ok ? "PASS" : "FAIL"; };
     o << "reference topology: " << (reference.determined ? "" : "UNDETERMINED ") << reference.components.size()
       << " component(s), genus " << genus_list(reference.components) << " (" << reference.crossed_cells
-      << " crossed cells, refinements " << ints(reference.refinements) << ", " << num(reference.seconds) << " s)\n";
+      << " crossed cells, " << reference.critical_planes << " critical planes, refinements " << ints(reference.refinements) << ", "
+      << num(reference.seconds) << " s)\n";
     o << "mesh: " << mesh.vertices << " vertices, " << mesh.triangles << " triangles, " << mesh.components.size()
       << " component(s), genus " << genus_list(mesh.components) << "\n";
     o << "  closed " << yn(mesh.closed) << ", manifold " << yn(mesh.manifold) << ", oriented " << yn(mesh.oriented)

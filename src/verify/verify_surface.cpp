@@ -23,7 +23,7 @@ bool VerifyReport::topology_ok() const
 VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& mesh, const VerifyOptions& options)
 {
     const auto t0 = std::chrono::steady_clock::now();
-    if (options.refine < 1 || options.refine > 32) throw InvalidInput("verify: --refine must be in [1, 32]");
+    if (options.refine < 1 || options.refine > 64) throw InvalidInput("verify: --refine must be in [1, 64]");
     if (options.eps < 0 || options.eps_voxels < 0) throw InvalidInput("verify: eps must be >= 0");
     const Inside inside = options.inside ? *options.inside
                                          : (grid.getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above);

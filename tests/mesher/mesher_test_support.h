@@ -3,10 +3,13 @@
 // (an independent reference topology, exact Hausdorff bounds, exact Delaunay conformity).
 #include "../verify/verify_test_support.h"
 
+#include <catch2/catch.hpp>
+
 #include <isodel/mesh.h>
 #include <isodel/verify.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -57,6 +60,21 @@ inline const minijson::Value* manifest_entry(const minijson::Value& manifest, co
 inline Inside inside_of(const minijson::Value& entry)
 {
     return entry["inside"].as_string() == "below" ? Inside::Below : Inside::Above;
+}
+
+/// Meshes \p grid at v = 0 (inside above) at each eps and requires a certified mesh (determined
+/// reference, every check passed) whose sorted genera are \p genera.
+inline void require_certified(const openvdb::FloatGrid& grid, std::initializer_list<double> eps_voxels,
+                              const std::vector<int>& genera)
+{
+    for (double eps : eps_voxels) {
+        INFO("eps " << eps << " voxel");
+        const auto r = mesh_and_verify(grid, 0.0, Inside::Above, eps);
+        INFO(r.report.summary());
+        CHECK(r.report.reference.determined);
+        CHECK(r.report.passed());
+        CHECK(r.genera == genera);
+    }
 }
 
 } // namespace isodel::testing
