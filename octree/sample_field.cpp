@@ -70,12 +70,12 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
             const Coord c = it.getCoord();
             // A face or cell reaching into a ring that reads as outside is not one of F's samples.
             const bool whole_cell = ring_reads_background_ || lattice_.isInside(c.offsetBy(1));
+            auto corner = [&](int n) { return c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1); }; // bits x, y, z
             std::array<double, 8> f;
-            for (int n = 0; n < 8; ++n) f[n] = acc.getValue(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1));
+            for (int n = 0; n < 8; ++n) f[n] = acc.getValue(corner(n));
             for (int axis = 0; axis < 3; ++axis) {
-                const int e1 = 1 << ((axis + 1) % 3), e2 = 1 << ((axis + 2) % 3); // corner bits
-                if (!ring_reads_background_ && !lattice_.isInside(c.offsetBy((e1 | e2) & 1, ((e1 | e2) >> 1) & 1, (e1 | e2) >> 2)))
-                    continue;
+                const int e1 = 1 << ((axis + 1) % 3), e2 = 1 << ((axis + 2) % 3);
+                if (!ring_reads_background_ && !lattice_.isInside(corner(e1 | e2))) continue;
                 const double a = f[0], b = f[e1], cc = f[e2], d = f[e1 | e2];
                 if (std::min({a, b, cc, d}) > isovalue || std::max({a, b, cc, d}) < isovalue) continue;
                 double s;
