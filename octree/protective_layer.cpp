@@ -27,6 +27,24 @@ std::array<int, 3> layer_radius(const SampleField& field)
     return r;
 }
 
+bool orthogonal_lattice(const SampleField& field)
+{
+    const auto& xf = field.transform();
+    const Vec3d o = xf.indexToWorld(Vec3d(0.0));
+    Vec3d e[3];
+    for (int a = 0; a < 3; ++a) {
+        Vec3d u(0.0);
+        u[a] = 1.0;
+        e[a] = xf.indexToWorld(u) - o;
+    }
+    for (int a = 0; a < 3; ++a) {
+        const Vec3d& p = e[a];
+        const Vec3d& q = e[(a + 1) % 3];
+        if (std::abs(p.dot(q)) > 1e-9 * p.length() * q.length()) return false;
+    }
+    return true;
+}
+
 ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGrid& crossed_cells)
 {
     ProtectiveLayer out;
@@ -36,9 +54,14 @@ ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGr
     out.bound_n = 1;
     for (int a = 0; a < 3; ++a) out.bound_n *= 2 * r[a] + 1;
     // An E point on an a-edge is trapped in (2 r_b) x (2 r_c) cells around the edge; report the
-    // worst axis.
-    for (int a = 0; a < 3; ++a)
-        out.bound_e = std::max(out.bound_e, 4 * r[(a + 1) % 3] * r[(a + 2) % 3]);
+    // worst axis. That argument (Theorem 2) needs lattice planes orthogonal to the edge: on a
+    // sheared lattice (EMD-3001: 8 cells measured) only the N-point block argument holds, and an
+    // E point lies in a crossed cell like any N point.
+    if (orthogonal_lattice(field))
+        for (int a = 0; a < 3; ++a)
+            out.bound_e = std::max(out.bound_e, 4 * r[(a + 1) % 3] * r[(a + 2) % 3]);
+    else
+        out.bound_e = out.bound_n;
 
     openvdb::MaskGrid mask;
     auto acc = mask.getAccessor();

@@ -27,13 +27,17 @@ namespace isodel::octree {
 
 struct ProtectiveLayer {
     std::array<int, 3> radius{1, 1, 1}; ///< r_a
-    int bound_e = 4;                    ///< cells a Voronoi cell of an E point may meet
+    int bound_e = 4;                    ///< cells a Voronoi cell of an E point may meet (bound_n if sheared)
     int bound_n = 27;                   ///< ... of an N point
     std::vector<Coord> points;          ///< G, in deterministic order
 };
 
 /// Per-axis layer radius for the transform of \p field (1 on cubic and mildly anisotropic voxels).
 std::array<int, 3> layer_radius(const SampleField& field);
+
+/// Whether the lattice axes of \p field's transform are mutually orthogonal (Theorem 2's 4-cell
+/// trap for E points needs it; sheared maps get the N-point bound for E points too).
+bool orthogonal_lattice(const SampleField& field);
 
 /// G around \p crossed_cells.
 ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGrid& crossed_cells);
