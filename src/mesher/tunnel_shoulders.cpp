@@ -1,6 +1,7 @@
 #include "mesher/tunnel_shoulders.h"
 
 #include "octree/cell_interpolant.h"
+#include "octree/segment_walk.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -46,7 +47,8 @@ int interior_critical_points(const octree::Trilinear& f, Vec3d out[2])
 }
 
 /// The hyperbola vertices of Sigma on the three grid planes through the critical point \p s.
-void shoulders(const octree::Trilinear& f, const Vec3d& s, const Vec3d& cell_origin, std::vector<Vec3d>& out)
+void shoulders(const octree::Trilinear& f, const Vec3d& s, const Vec3d& cell_origin, std::vector<Vec3d>& out,
+               const octree::SampleField::Reader& reader)
 {
     const double fs = f(s[0], s[1], s[2]);
     if (fs == 0) return; // Sigma passes through s: a cone point; the tie rule moves v off it
@@ -69,7 +71,18 @@ void shoulders(const octree::Trilinear& f, const Vec3d& s, const Vec3d& cell_ori
             Vec3d y = s;
             y[u] += side * t;
             y[w] += side * diagonal * t;
-            if (y[u] > 0 && y[u] < 1 && y[w] > 0 && y[w] < 1) out.push_back(cell_origin + y);
+            if (y[u] > 0 && y[u] < 1 && y[w] > 0 && y[w] < 1) {
+                out.push_back(cell_origin + y);
+            } else {
+                // The neck reaches through a face of the cell (the saddle lies within t of it):
+                // this cell's quadric no longer describes Sigma there, so take the first crossing
+                // of the true Sigma on the same ray from s instead (a point of Sigma on the ring
+                // around the neck, in the neighbouring cell). Dropping it left the ring open:
+                // quantized random seed 78 (5^3) lost a handle at every eps.
+                const Vec3d a = cell_origin + s, b = cell_origin + s + 2.0 * (y - s);
+                const auto x = octree::segment_crossings(reader, a, b, 8);
+                if (!x.t.empty()) out.push_back(a + x.t.front() * (b - a));
+            }
         }
     }
 }
@@ -88,7 +101,7 @@ std::vector<Vec3d> tunnel_shoulder_points(const octree::SampleField& field, cons
             const octree::Trilinear f = octree::Trilinear::from_corners(corner);
             Vec3d crit[2];
             const int nc = interior_critical_points(f, crit);
-            for (int m = 0; m < nc; ++m) shoulders(f, crit[m], crossed_cells[i].asVec3d(), found[i]);
+            for (int m = 0; m < nc; ++m) shoulders(f, crit[m], crossed_cells[i].asVec3d(), found[i], reader);
         }
     });
     std::vector<Vec3d> out; // in crossed-cell order: deterministic whatever the thread count

@@ -13,8 +13,10 @@
 // exactly (the in-plane gradient vanishes at s and the plane's bilinear has no u^2, w^2 terms),
 // with k_a the mixed second derivative there. Sigma on that plane is a hyperbola whose two
 // vertices lie on a diagonal at |u| = |w| = sqrt(|F(s) / k_a|): the points of the neck closest to
-// s. The up to six of them inside the cell ring the neck; they are inserted with the E points as
-// N points of the topology phase, so the Voronoi diagram cuts the neck from the start.
+// s. The up to six of them ring the neck; they are inserted with the E points as N points of the
+// topology phase, so the Voronoi diagram cuts the neck from the start. A vertex that falls outside
+// the cell (a saddle within t of a face: the neck passes into the next cell) is replaced by the
+// first crossing of Sigma on the same ray from s, so the ring stays closed across the face.
 #include "octree/sample_field.h"
 
 #include <vector>
@@ -22,8 +24,8 @@
 namespace isodel::mesher {
 
 /// Index-space shoulder points of the necks at the interior critical points of the cells
-/// \p crossed_cells (points exactly on Sigma: F is a quadratic along the diagonals, solved in
-/// closed form; only those strictly inside their cell).
+/// \p crossed_cells (points on Sigma: inside the cell F is a quadratic along the diagonals, solved
+/// in closed form; beyond a face, the root of the true F on the ray, isolated by segment_crossings).
 std::vector<openvdb::Vec3d> tunnel_shoulder_points(const octree::SampleField& field,
                                                    const std::vector<openvdb::Coord>& crossed_cells);
 

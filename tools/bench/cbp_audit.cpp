@@ -1,0 +1,229 @@
+// cbp_audit: how closely the mesher's final point set satisfies the closed ball property for the
+// exact Sigma, i.e. without the knife-edge crease cut (octree/segment_walk.h). A diagnostic for
+// mesher work, not a certificate (`isodel verify` is that): it meshes the volume, rebuilds
+// Del(E u G u N) of the final points with exact circumcentres, walks every finite Voronoi edge
+// with no crease tolerance, and samples every Voronoi facet on a RES x RES lattice.
+//
+//   cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--res 40] [--show 10]
+//
+// Prints (index coordinates): Voronoi edges crossing Sigma more than once (CBP_VE), facets whose
+// boundary crosses Sigma more than twice (CBP_VF) or whose interior holds a sampled island of
+// the other sign (a loop), and facets of M whose Voronoi edge has an even number of crossings
+// (parity, which the cut cannot change). Every violation should lie inside a cut zone (within
+// eps/50 of a grid plane, at a crease); one elsewhere is a mesher defect.
+#include <isodel/mesh.h>
+#include <isodel/volume.h>
+
+#include "octree/sample_field.h"
+#include "octree/segment_walk.h"
+
+#include <CGAL/Cartesian_converter.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb>;
+using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+using P3 = K::Point_3;
+using V3 = openvdb::Vec3d;
+
+/// Circumcentres of nearly flat cells are ill-conditioned in doubles: construct them exactly.
+P3 exact_circumcenter(const DT::Cell_handle& c)
+{
+    CGAL::Cartesian_converter<K, EK> to;
+    CGAL::Cartesian_converter<EK, K> back;
+    return back(CGAL::circumcenter(to(c->vertex(0)->point()), to(c->vertex(1)->point()), to(c->vertex(2)->point()),
+                                   to(c->vertex(3)->point())));
+}
+
+int find(std::vector<int>& parent, int x)
+{
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--res 40] [--show 10]\n");
+        return 2;
+    }
+    std::string input = argv[1];
+    double iso = 0, eps = 0.5;
+    bool have_iso = false;
+    int res = 40, show = 10;
+    std::string inside;
+    for (int i = 2; i + 1 < argc; i += 2) {
+        const std::string a = argv[i], v = argv[i + 1];
+        if (a == "--iso") iso = std::stod(v), have_iso = true;
+        else if (a == "--eps-voxels") eps = std::stod(v);
+        else if (a == "--inside") inside = v;
+        else if (a == "--res") res = std::stoi(v);
+        else if (a == "--show") show = std::stoi(v);
+        else {
+            std::fprintf(stderr, "cbp_audit: unknown option %s\n", a.c_str());
+            return 2;
+        }
+    }
+    if (!have_iso) {
+        std::fprintf(stderr, "cbp_audit: --iso is required\n");
+        return 2;
+    }
+    openvdb::initialize();
+    try {
+        const isodel::Volume vol = isodel::read_volume(input);
+        isodel::MeshOptions mo;
+        mo.isovalue = iso;
+        const isodel::Inside side =
+            inside.empty() ? vol.default_inside : (inside == "below" ? isodel::Inside::Below : isodel::Inside::Above);
+        mo.inside = side;
+        mo.eps_voxels = eps;
+        mo.keep_points = true;
+        const auto r = isodel::mesh_isosurface(*vol.grid, mo);
+        std::printf("%s: M has %zu vertices, %zu triangles; %zu points in the final triangulation\n", input.c_str(),
+                    r.surface.vertices.size(), r.surface.triangles.size(), r.points.size());
+        const isodel::octree::SampleField field(vol.grid, iso, side);
+        const isodel::octree::SampleField::Reader reader(field);
+        auto idx = [&](const P3& p) { return field.world_to_index(V3(p.x(), p.y(), p.z())); };
+
+        std::vector<std::pair<P3, int>> pts;
+        std::map<std::array<double, 3>, int> id_of;
+        for (std::size_t i = 0; i < r.points.size(); ++i) {
+            pts.push_back({P3(r.points[i][0], r.points[i][1], r.points[i][2]), int(i)});
+            id_of[{r.points[i][0], r.points[i][1], r.points[i][2]}] = int(i);
+        }
+        const DT dt(pts.begin(), pts.end());
+        std::set<std::array<int, 3>> in_mesh;
+        for (const auto& t : r.surface.triangles) {
+            std::array<int, 3> k{};
+            for (int j = 0; j < 3; ++j) {
+                const auto& v = r.surface.vertices[t[j]];
+                const auto it = id_of.find({v[0], v[1], v[2]});
+                k[j] = it == id_of.end() ? -1 : it->second;
+            }
+            std::sort(k.begin(), k.end());
+            in_mesh.insert(k);
+        }
+
+        // Voronoi edges: crossings of the exact Sigma, and parity against M.
+        int ve = 0, parity = 0;
+        for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
+            const auto c = f->first;
+            const auto n = c->neighbor(f->second);
+            if (dt.is_infinite(c) || dt.is_infinite(n)) continue;
+            const V3 a = idx(exact_circumcenter(c)), b = idx(exact_circumcenter(n));
+            const auto x = isodel::octree::segment_crossings(reader, a, b, 1 << 20);
+            std::array<int, 3> k{};
+            for (int j = 0, m = 0; j < 4; ++j)
+                if (j != f->second) k[m++] = c->vertex(j)->info();
+            std::sort(k.begin(), k.end());
+            if (x.t.size() > 1 && ++ve <= show) {
+                const V3 p = a + x.t[0] * (b - a), q = a + x.t[1] * (b - a);
+                std::printf("  CBP_VE: %zu crossings, first two at (%.5f %.5f %.5f) and (%.5f %.5f %.5f)\n", x.t.size(), p[0],
+                            p[1], p[2], q[0], q[1], q[2]);
+            }
+            if (bool(x.t.size() % 2) != bool(in_mesh.count(k)) && ++parity <= show)
+                std::printf("  parity: %zu crossings, in M %d, Voronoi edge (%.5f %.5f %.5f)-(%.5f %.5f %.5f)\n", x.t.size(),
+                            int(in_mesh.count(k)), a[0], a[1], a[2], b[0], b[1], b[2]);
+        }
+
+        // Voronoi facets: boundary crossings, and islands of either sign in a sampled interior.
+        int vf = 0, loops = 0, facets = 0;
+        for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+            std::vector<V3> P;
+            bool unbounded = false;
+            auto cc = dt.incident_cells(*e), done = cc;
+            do {
+                if (dt.is_infinite(cc)) {
+                    unbounded = true;
+                    break;
+                }
+                P.push_back(idx(exact_circumcenter(cc)));
+            } while (++cc != done);
+            if (unbounded || P.size() < 3) continue;
+            V3 centre(0.0);
+            for (const auto& q : P) centre += q;
+            centre *= 1.0 / double(P.size());
+            double extent = 0;
+            for (const auto& q : P) extent = std::max(extent, (q - centre).length());
+            if (extent > 8 || extent == 0) continue; // beyond the voxel bound: not the mesher's business
+            V3 N(0.0);
+            for (std::size_t i = 0; i < P.size(); ++i) N += (P[i] - centre).cross(P[(i + 1) % P.size()] - centre);
+            if (N.length() == 0) continue;
+            N.normalize();
+            int boundary = 0;
+            for (std::size_t i = 0; i < P.size(); ++i)
+                boundary += int(isodel::octree::segment_crossings(reader, P[i], P[(i + 1) % P.size()], 1 << 20).t.size());
+            ++facets;
+            if (boundary > 2 && ++vf <= show)
+                std::printf("  CBP_VF: %d boundary crossings, facet centre (%.5f %.5f %.5f), extent %.2e\n", boundary,
+                            centre[0], centre[1], centre[2], extent);
+            V3 u = P[0] - centre;
+            u.normalize();
+            const V3 w = N.cross(u);
+            const int s = res + 1;
+            const double h = 2 * extent / res;
+            std::vector<int> sign(std::size_t(s * s), -1), parent(std::size_t(s * s));
+            for (int i = 0; i < s; ++i)
+                for (int j = 0; j < s; ++j) {
+                    const V3 q = centre + (-extent + i * h) * u + (-extent + j * h) * w;
+                    bool in_polygon = true;
+                    for (std::size_t m = 0; m < P.size() && in_polygon; ++m)
+                        in_polygon = (P[(m + 1) % P.size()] - P[m]).cross(q - P[m]).dot(N) >= 0;
+                    if (in_polygon) sign[std::size_t(i * s + j)] = isodel::octree::phi_at(reader, q) >= 0;
+                }
+            for (int i = 0; i < s * s; ++i) parent[std::size_t(i)] = i;
+            for (int i = 0; i < s; ++i)
+                for (int j = 0; j < s; ++j) {
+                    const int a = i * s + j;
+                    if (sign[std::size_t(a)] < 0) continue;
+                    if (i + 1 < s && sign[std::size_t(a + s)] == sign[std::size_t(a)]) parent[std::size_t(find(parent, a))] = find(parent, a + s);
+                    if (j + 1 < s && sign[std::size_t(a + 1)] == sign[std::size_t(a)]) parent[std::size_t(find(parent, a))] = find(parent, a + 1);
+                }
+            // An island: a component of samples that never touches the polygon's edge.
+            std::vector<char> touches(std::size_t(s * s), 0);
+            std::vector<int> size(std::size_t(s * s), 0);
+            for (int i = 0; i < s; ++i)
+                for (int j = 0; j < s; ++j) {
+                    const int a = i * s + j;
+                    if (sign[std::size_t(a)] < 0) continue;
+                    const int root = find(parent, a);
+                    ++size[std::size_t(root)];
+                    const bool rim = i == 0 || j == 0 || i == s - 1 || j == s - 1 || sign[std::size_t(a - s)] < 0 ||
+                                     sign[std::size_t(a + s)] < 0 || sign[std::size_t(a - 1)] < 0 || sign[std::size_t(a + 1)] < 0;
+                    if (rim) touches[std::size_t(root)] = 1;
+                }
+            for (int a = 0; a < s * s; ++a)
+                if (sign[std::size_t(a)] >= 0 && find(parent, a) == a && !touches[std::size_t(a)] && size[std::size_t(a)] >= 2) {
+                    if (++loops <= show)
+                        std::printf("  CBP_VF loop: island of %d samples, facet centre (%.5f %.5f %.5f), extent %.2e\n",
+                                    size[std::size_t(a)], centre[0], centre[1], centre[2], extent);
+                    break;
+                }
+        }
+        std::printf("Voronoi edges crossing Sigma more than once: %d; M facets with the wrong parity: %d\n", ve, parity);
+        std::printf("Voronoi facets sampled: %d; more than 2 boundary crossings: %d; with an interior loop: %d\n", facets, vf,
+                    loops);
+        return ve + vf + loops + parity == 0 ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "cbp_audit: %s\n", e.what());
+        return 1;
+    }
+}
