@@ -5,16 +5,27 @@
 
 namespace isodel::octree {
 
-std::array<int, 3> layer_radius(const SampleField& field)
+namespace {
+
+/// World-space edge vectors of a cell: the images of the index axes.
+std::array<Vec3d, 3> lattice_axes(const SampleField& field)
 {
     const auto& xf = field.transform();
     const Vec3d o = xf.indexToWorld(Vec3d(0.0));
-    Vec3d e[3];
+    std::array<Vec3d, 3> e;
     for (int a = 0; a < 3; ++a) {
         Vec3d u(0.0);
         u[a] = 1.0;
         e[a] = xf.indexToWorld(u) - o;
     }
+    return e;
+}
+
+} // namespace
+
+std::array<int, 3> layer_radius(const SampleField& field)
+{
+    const std::array<Vec3d, 3> e = lattice_axes(field);
     const double vol = std::abs(e[0].dot(e[1].cross(e[2])));
     std::array<int, 3> r{};
     for (int a = 0; a < 3; ++a) {
@@ -29,14 +40,9 @@ std::array<int, 3> layer_radius(const SampleField& field)
 
 bool orthogonal_lattice(const SampleField& field)
 {
-    const auto& xf = field.transform();
-    const Vec3d o = xf.indexToWorld(Vec3d(0.0));
-    Vec3d e[3];
-    for (int a = 0; a < 3; ++a) {
-        Vec3d u(0.0);
-        u[a] = 1.0;
-        e[a] = xf.indexToWorld(u) - o;
-    }
+    const std::array<Vec3d, 3> e = lattice_axes(field);
+    // Relative to the edge lengths, and loose enough for the rounding of a rotated transform:
+    // a real shear (EMD-3001's non-orthogonal cell) is orders of magnitude above it.
     for (int a = 0; a < 3; ++a) {
         const Vec3d& p = e[a];
         const Vec3d& q = e[(a + 1) % 3];

@@ -9,6 +9,8 @@
 ///    planes of e and the edge's endpoints (both in G), and within the 2 x 2 cells around the
 ///    edge, because every point y on the outer faces of those cells is within half a face
 ///    diagonal of a grid point of G but at least one voxel from e (Theorem 2, Lemma 1): 4 cells.
+///    This needs lattice planes orthogonal to the edge; on a sheared lattice e is held to the
+///    N-point block below (it lies in a crossed cell too).
 ///  - N point n in crossed cell C: a point y on the boundary of the block of (2r+1)^3 cells
 ///    around C is at distance >= r_a h_a from n (h_a: spacing of the lattice planes across axis
 ///    a) and within the face lattice's covering radius R_a of a G point on that face. r_a is the

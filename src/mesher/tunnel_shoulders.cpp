@@ -77,11 +77,16 @@ void shoulders(const octree::Trilinear& f, const Vec3d& s, const Vec3d& cell_ori
                 // The neck reaches through a face of the cell (the saddle lies within t of it):
                 // this cell's quadric no longer describes Sigma there, so take the first crossing
                 // of the true Sigma on the same ray from s instead (a point of Sigma on the ring
-                // around the neck, in the neighbouring cell). Dropping it left the ring open:
-                // quantized random seed 78 (5^3) lost a handle at every eps.
-                const Vec3d a = cell_origin + s, b = cell_origin + s + 2.0 * (y - s);
-                const auto x = octree::segment_crossings(reader, a, b, 8);
-                if (!x.t.empty()) out.push_back(a + x.t.front() * (b - a));
+                // around the neck, usually in the neighbouring cell; inside the cell F keeps
+                // F(s)'s sign up to the face, as the quadric has no root before t). Dropping it
+                // left the ring open: quantized random seed 78 (5^3) lost a handle at every eps.
+                // The ray is twice the vertex distance long, and its walk stops after a few cells
+                // (a short ray meets at most 4; a wide, shallow neck needs no shoulders): with no
+                // crossing there the point is dropped as before.
+                const int kMaxRayCells = 8;
+                const Vec3d ray_start = cell_origin + s, ray_end = cell_origin + s + 2.0 * (y - s);
+                const auto crossings = octree::segment_crossings(reader, ray_start, ray_end, kMaxRayCells);
+                if (!crossings.t.empty()) out.push_back(ray_start + crossings.t.front() * (ray_end - ray_start));
             }
         }
     }

@@ -16,7 +16,8 @@
 // s. The up to six of them ring the neck; they are inserted with the E points as N points of the
 // topology phase, so the Voronoi diagram cuts the neck from the start. A vertex that falls outside
 // the cell (a saddle within t of a face: the neck passes into the next cell) is replaced by the
-// first crossing of Sigma on the same ray from s, so the ring stays closed across the face.
+// first crossing of Sigma on the same ray from s within twice its distance (else dropped), so
+// the ring stays closed across the face.
 #include "octree/sample_field.h"
 
 #include <vector>

@@ -40,8 +40,9 @@ void mesh_corpus(const std::vector<std::string>& files)
         INFO(file << "\n" << r.report.summary());
         if (e.has("expected_topology") && e["expected_topology"].has("genus")) CHECK(r.genera == testing::expected_genera(e));
         CHECK(r.report.passed());
-        // Theorem 2's bounds: 4 cells for E and 27 for N points on orthogonal lattices; on a sheared
-        // map (EMD-3001, 8 cells measured for E) the E bound is the N block's (protective_layer.h).
+        // Theorem 2's bounds (4 cells for E and 27 for N points with a one-voxel layer; E's needs an
+        // orthogonal lattice: on a sheared map, EMD-3001 with 8 cells measured for E, the E bound
+        // is the N block's, protective_layer.h).
         CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
         CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);
     }

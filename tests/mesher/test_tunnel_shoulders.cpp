@@ -6,8 +6,11 @@
 #include "mesher_test_support.h"
 
 #include "mesher/tunnel_shoulders.h"
+#include "octree/critical_values.h"
 #include "octree/segment_walk.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 using namespace isodel;
@@ -92,16 +95,35 @@ TEST_CASE("tunnel shoulders: a neck reaching through a cell face keeps a closed 
     const octree::SampleField field(grid, 0.0, Inside::Above);
     const octree::SampleField::Reader reader(field);
     const auto pts = mesher::tunnel_shoulder_points(field, {openvdb::Coord(1, 1, 1)});
+    REQUIRE(pts.size() == 6);
+    std::array<double, 8> f;
+    std::copy(corner, corner + 8, f.begin());
+    octree::CellCritical crit[2];
+    REQUIRE(octree::cell_critical_points(f, crit) == 1);
+    const openvdb::Vec3d s(1 + crit[0].x, 1 + crit[0].y, 1 + crit[0].z);
     int outside = 0;
     for (const auto& p : pts) {
         INFO(p);
         CHECK(std::abs(octree::phi_at(reader, p)) < 1e-9);
         bool in_cell = true;
         for (int a = 0; a < 3; ++a) in_cell &= p[a] > 1 && p[a] < 2;
-        outside += !in_cell;
+        if (in_cell) continue;
+        ++outside;
+        // On a grid plane through s, on one of its diagonals (|u| = |w|), and the first crossing
+        // of Sigma from s: F keeps F(s)'s sign (inside) all the way to p.
+        const openvdb::Vec3d d = p - s;
+        int on_plane = 0;
+        for (int a = 0; a < 3; ++a) on_plane += std::abs(d[a]) < 1e-6; // s from another solver: ~1e-8 apart
+        CHECK(on_plane == 1);
+        double m[2];
+        int k = 0;
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(d[a]) >= 1e-6) m[k++ % 2] = std::abs(d[a]);
+        CHECK(std::abs(m[0] - m[1]) < 1e-6);
+        CHECK(octree::segment_crossings(reader, s, s + 0.999 * d).t.empty());
+        CHECK(octree::phi_at(reader, s + 0.999 * d) > 0);
     }
     CHECK(outside == 2);
-    CHECK(pts.size() == 6);
 }
 
 TEST_CASE("tunnel shoulders: quantized random seed 78 keeps the handle whose neck crosses a face", "[mesher][tunnel]")

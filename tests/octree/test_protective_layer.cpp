@@ -40,31 +40,43 @@ openvdb::math::Transform::Ptr sheared()
 
 } // namespace
 
-TEST_CASE("protective layer: the E-point bound is Theorem 2's 4 cells only on orthogonal lattices", "[octree][voxel-bound]")
+TEST_CASE("protective layer: the E-point bound is Theorem 2's 4 cells only on orthogonal lattices",
+          "[octree][voxel-bound]")
 {
     const auto cubic = ball(openvdb::math::Transform::createLinearTransform(0.5));
     const auto aniso = ball(openvdb::math::Transform::createLinearTransform(
         openvdb::math::Mat4d(0.5, 0., 0., 0., 0., 0.6, 0., 0., 0., 0., 0.55, 0., 0., 0., 0., 1.)));
     const auto shear = ball(sheared());
-    const octree::SampleField fc(cubic, 0.0, Inside::Above), fa(aniso, 0.0, Inside::Above), fs(shear, 0.0, Inside::Above);
+    // Rotated but orthogonal: must not count as sheared (orthogonality, not axis alignment).
+    auto rotated_xf = openvdb::math::Transform::createLinearTransform(0.5);
+    rotated_xf->postRotate(0.3, openvdb::math::Z_AXIS);
+    rotated_xf->postRotate(0.2, openvdb::math::X_AXIS);
+    const auto rotated = ball(rotated_xf);
+    const octree::SampleField fc(cubic, 0.0, Inside::Above), fa(aniso, 0.0, Inside::Above);
+    const octree::SampleField fs(shear, 0.0, Inside::Above), fr(rotated, 0.0, Inside::Above);
     CHECK(octree::orthogonal_lattice(fc));
     CHECK(octree::orthogonal_lattice(fa));
+    CHECK(octree::orthogonal_lattice(fr));
     CHECK_FALSE(octree::orthogonal_lattice(fs));
     const auto lc = octree::protective_layer(fc, openvdb::MaskGrid());
     const auto ls = octree::protective_layer(fs, openvdb::MaskGrid());
     CHECK(lc.bound_e == 4);
     CHECK(lc.bound_n == 27);
     CHECK(ls.bound_e == ls.bound_n);
+    CHECK(ls.bound_n == 27); // a one-voxel layer still covers this shear (layer_radius)
+    CHECK(octree::protective_layer(fr, openvdb::MaskGrid()).bound_e == 4);
 }
 
-TEST_CASE("protective layer: on a sheared lattice the measured E-point maximum stays within the reported bound", "[octree][voxel-bound]")
+TEST_CASE("protective layer: on a sheared lattice the measured E-point maximum stays within the reported bound",
+          "[octree][voxel-bound]")
 {
     MeshOptions mo;
     mo.isovalue = 0.0;
     mo.inside = Inside::Above;
     mo.eps_voxels = 0.5;
     const auto r = mesh_isosurface(*ball(sheared()), mo);
-    INFO("E: " << r.stats.max_cells_e << " of " << r.stats.bound_e << ", N: " << r.stats.max_cells_n << " of " << r.stats.bound_n);
+    INFO("E: " << r.stats.max_cells_e << " of " << r.stats.bound_e << ", N: " << r.stats.max_cells_n << " of "
+               << r.stats.bound_n);
     CHECK(r.stats.max_cells_e > 4); // the sheared cell does break the cubic 4-cell trap
     CHECK(r.stats.max_cells_e <= r.stats.bound_e);
     CHECK(r.stats.max_cells_n <= r.stats.bound_n);

@@ -8,9 +8,10 @@
 //
 //   random_sweep [--n 5] [--seeds 21-100] [--eps-voxels 0.5,0.25,0.1] [--kinds plain,quantized]
 //                [--threads 1]
-// The volumes are the property test's: n^3 uniform samples in [-1, 1] drawn from
-// std::mt19937(seed) in x-fastest order, padded by one layer of -1. Exit status 0 only if
-// every run verifies.
+// The volumes are the property test's (testing::random_volume in tests/verify/
+// verify_test_support.h, which must stay identical: seeds named in tests and the README refer
+// to it): n^3 uniform samples in [-1, 1] drawn from std::mt19937(seed) in x-fastest order,
+// padded by one layer of -1. Exit status 0 only if every run verifies; 2 on bad arguments.
 #include <isodel/mesh.h>
 #include <isodel/verify.h>
 
@@ -23,6 +24,7 @@
 #include <cstdio>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,35 +64,51 @@ int main(int argc, char** argv)
     int n = 5, threads = 1, first = 21, last = 100;
     std::vector<double> eps{0.5, 0.25, 0.1};
     std::vector<std::string> kinds{"plain", "quantized"};
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc) {
-                std::fprintf(stderr, "random_sweep: %s needs a value\n", a.c_str());
-                std::exit(2);
+    try {
+        for (int i = 1; i < argc; ++i) {
+            const std::string a = argv[i];
+            if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+            const std::string v = argv[++i];
+            try {
+                if (a == "--n")
+                    n = std::stoi(v);
+                else if (a == "--threads")
+                    threads = std::stoi(v);
+                else if (a == "--seeds") {
+                    const auto dash = v.find('-');
+                    first = std::stoi(v.substr(0, dash));
+                    last = dash == std::string::npos ? first : std::stoi(v.substr(dash + 1));
+                }
+                else if (a == "--eps-voxels") {
+                    eps.clear();
+                    for (const auto& e : split(v))
+                        eps.push_back(std::stod(e));
+                }
+                else if (a == "--kinds")
+                    kinds = split(v);
+                else
+                    throw std::invalid_argument("unknown option " + a + " (see tools/bench/random_sweep.cpp)");
             }
-            return argv[++i];
-        };
-        if (a == "--n") n = std::stoi(next());
-        else if (a == "--threads") threads = std::stoi(next());
-        else if (a == "--seeds") {
-            const std::string s = next();
-            const auto dash = s.find('-');
-            first = std::stoi(s.substr(0, dash));
-            last = dash == std::string::npos ? first : std::stoi(s.substr(dash + 1));
-        } else if (a == "--eps-voxels") {
-            eps.clear();
-            for (const auto& e : split(next())) eps.push_back(std::stod(e));
-        } else if (a == "--kinds") kinds = split(next());
-        else {
-            std::fprintf(stderr, "random_sweep: unknown option %s (see the header of tools/bench/random_sweep.cpp)\n", a.c_str());
-            return 2;
+            catch (const std::invalid_argument& e) {
+                if (std::string(e.what()).rfind("sto", 0) != 0) throw;
+                throw std::invalid_argument(a + ": not a number: " + v);
+            }
         }
+        if (n < 1 || threads < 0 || first < 0 || last < first || eps.empty())
+            throw std::invalid_argument(
+                "need --n >= 1, --threads >= 0, --seeds A-B with 0 <= A <= B, some --eps-voxels");
+        for (const auto& k : kinds)
+            if (k != "plain" && k != "quantized")
+                throw std::invalid_argument("--kinds: '" + k + "' is not plain or quantized");
+    }
+    catch (const std::exception& e) { // std::stoi/stod say only "stoi": name the problem
+        std::fprintf(stderr, "random_sweep: bad arguments: %s\n", e.what());
+        return 2;
     }
     openvdb::initialize();
     bool all_pass = true;
-    std::printf("| n | kind | eps (voxel) | runs | verified | failed (seed) | vertices | seconds |\n");
-    std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    std::printf("| n | kind | eps (voxel) | runs | verified | failed (seed) | undetermined | vertices | seconds |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (const auto& kind : kinds) {
         const bool quantized = kind == "quantized";
         for (double e : eps) {
@@ -107,7 +125,9 @@ int main(int argc, char** argv)
                 isodel::MeshResult r;
                 try {
                     r = isodel::mesh_isosurface(*grid, mo);
-                } catch (const std::exception& ex) {
+                }
+                catch (const std::exception& ex) {
+                    std::fprintf(stderr, "seed %d (%s, eps %g): %s\n", s, kind.c_str(), e, ex.what());
                     row.failures << ' ' << s << " (error)";
                     continue;
                 }
@@ -119,12 +139,15 @@ int main(int argc, char** argv)
                 vo.eps_voxels = e;
                 const auto rep = isodel::verify_surface(*grid, r.surface, vo);
                 if (rep.topology_verdict == "undetermined") ++row.undetermined;
-                if (rep.passed()) ++row.verified;
-                else row.failures << ' ' << s;
+                if (rep.passed())
+                    ++row.verified;
+                else
+                    row.failures << ' ' << s;
             }
             all_pass &= row.verified == row.runs;
-            std::printf("| %d | %s | %g | %d | %d | %s | %zu | %.1f |\n", n, kind.c_str(), e, row.runs, row.verified,
-                        row.failures.str().empty() ? "-" : row.failures.str().c_str() + 1, row.vertices, row.seconds);
+            const std::string failed = row.failures.str().empty() ? "-" : row.failures.str().substr(1);
+            std::printf("| %d | %s | %g | %d | %d | %s | %d | %zu | %.1f |\n", n, kind.c_str(), e, row.runs,
+                        row.verified, failed.c_str(), row.undetermined, row.vertices, row.seconds);
             std::fflush(stdout);
         }
     }
