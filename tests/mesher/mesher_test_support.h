@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <isodel/mesh.h>
 #include <isodel/verify.h>
 
@@ -64,6 +66,16 @@ inline Inside inside_of(const minijson::Value& entry)
 
 /// Meshes \p grid at v = 0 (inside above) at each eps and requires a certified mesh (determined
 /// reference, every check passed) whose sorted genera are \p genera.
+/// Whether \p path (a file of ../shared/data) exists; if not, the test says so and counts as
+/// skipped: `if (!testing::shared_file_present(path)) return;`.
+inline bool shared_file_present(const std::string& path)
+{
+    if (std::ifstream(path)) return true;
+    WARN(path << " not found (../shared/data absent): test skipped");
+    SUCCEED();
+    return false;
+}
+
 inline void require_certified(const openvdb::FloatGrid& grid, std::initializer_list<double> eps_voxels,
                               const std::vector<int>& genera)
 {

@@ -38,11 +38,7 @@ int component_count(std::size_t nv, const std::vector<std::vector<std::uint32_t>
 TEST_CASE("thin neck: marching cubes splits it, isodel keeps one component", "[mesher][thin-neck]")
 {
     const std::string path = testing::shared_data() + "/analytic/dumbbell_thin_neck.vdb";
-    if (!std::ifstream(path)) {
-        WARN(path << " not found (../shared/data absent): test skipped");
-        SUCCEED();
-        return;
-    }
+    if (!testing::shared_file_present(path)) return;
     auto grid = testing::read_vdb(path, "");
 
     // Marching cubes, the speed floor users compare against.
