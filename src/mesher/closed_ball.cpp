@@ -39,6 +39,7 @@ const char* to_string(Violation v)
     case Violation::VoronoiCell: return "CBP_VC";
     case Violation::Epsilon: return "epsilon";
     case Violation::Hausdorff: return "hausdorff";
+    case Violation::FacetAngle: return "facet-angle";
     case Violation::Unbounded: return "voxel-bound";
     }
     return "?";
@@ -49,6 +50,26 @@ void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter
     if (!keep) return;
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](const Candidate& c) { return !keep(c.p); }),
                      candidates.end());
+}
+
+std::vector<Candidate> facet_angle_violations(const std::vector<const FacetCache::Entry*>& restricted,
+                                              double min_angle_deg, const CandidateFilter& keep)
+{
+    // sin^2 of the smallest angle from the law of sines: the smallest angle faces the shortest
+    // edge, sin = 2 area / (product of the two other edges).
+    const double s = std::sin(min_angle_deg * 3.14159265358979323846 / 180.0);
+    std::vector<Candidate> out;
+    for (const auto* e : restricted) {
+        const auto vs = facet_vertices(e->facet);
+        const Point &a = vs[0]->point(), &b = vs[1]->point(), &c = vs[2]->point();
+        double l2[3] = {CGAL::squared_distance(b, c), CGAL::squared_distance(c, a), CGAL::squared_distance(a, b)};
+        std::sort(l2, l2 + 3);
+        const double area2 = CGAL::squared_area(a, b, c); // area^2
+        // sin^2(min angle) = 4 area^2 / (l1^2 l2^2) with l1, l2 the two longer edges.
+        if (4 * area2 < s * s * l2[1] * l2[2]) out.push_back(candidate_of(*e, PointKind::Geometry));
+    }
+    filter_candidates(out, keep);
+    return out;
 }
 
 std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Entry>& entries, const CandidateFilter& keep)

@@ -28,6 +28,7 @@ enum class Violation {
     VoronoiCell,  ///< CBP_VC: a surface vertex's restricted link is not one cycle (Theorem 5)
     Epsilon,      ///< |surface point - circumcentre| > eps (Section 4.1, mesh refinement)
     Hausdorff,    ///< a one-sided distance between a facet and Sigma exceeds eps (measured)
+    FacetAngle,   ///< optional: a restricted facet's smallest angle is below the bound
     Unbounded,    ///< a Voronoi edge of a surface facet left its cell bound
 };
 
@@ -51,6 +52,12 @@ void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter
 /// (a class whose candidates \p keep all rejects counts as absent).
 ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps,
                                 const CandidateFilter& keep = {});
+
+/// Triangle quality (MeshOptions::facet_angle_deg): the surface point of every restricted facet
+/// whose smallest angle is under \p min_angle_deg (Delaunay refinement of the restricted
+/// surface, as Boissonnat and Oudot's facet angle criterion).
+std::vector<Candidate> facet_angle_violations(const std::vector<const FacetCache::Entry*>& restricted,
+                                              double min_angle_deg, const CandidateFilter& keep = {});
 
 /// CBP_VE among \p entries only (e.g. FacetCache::recent()): the farthest crossing of every
 /// Voronoi edge crossing Sigma more than once. Empty when an entry overflowed (a hole in G is

@@ -234,6 +234,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), snap_radius);
     hausdorff.set_filter(run.keep);
     FacetLoopScanner loops;
+    // Optional facet angle refinement: its own bound (E-point clusters make graded refinement).
+    const std::size_t max_angle_points = 2 * st.e_points + 10000;
     double t_topology = 0, t_refine = 0;
     const std::size_t n_before_loops = st.n_topology + st.n_geometry;
     {
@@ -293,6 +295,17 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 }
                 if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
             }
+            if (rep.kind == Violation::None && options.facet_angle_deg > 0 && st.facet_angle_stop.empty()) {
+                // Optional triangle quality, last: every guarantee holds here, so stopping it at
+                // its bound leaves a certified mesh (facet_angle_stop says why it stopped).
+                std::vector<const FacetCache::Entry*> restricted;
+                for (const auto& e : cache.active())
+                    if (e.crossings == 1) restricted.push_back(&e);
+                rep.candidates = facet_angle_violations(restricted, options.facet_angle_deg, run.keep);
+                if (rep.candidates.empty()) st.facet_angle_stop = "met";
+                else if (st.n_facet_angle >= max_angle_points) st.facet_angle_stop = "point bound";
+                else rep.kind = Violation::FacetAngle;
+            }
             if (rep.kind == Violation::None) break;
             if (rep.kind == Violation::Unbounded) {
                 // Surface facets whose Voronoi edge left the bound: repair around their vertices.
@@ -307,7 +320,9 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
             for (const auto& v : ins.inserted) {
                 loops.touched(v);
-                if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff) ++st.n_geometry;
+                if (rep.kind == Violation::FacetAngle) ++st.n_facet_angle;
+                if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff || rep.kind == Violation::FacetAngle)
+                    ++st.n_geometry;
                 else ++st.n_topology;
                 measure(v, st.max_cells_n, st.bound_n, over_bound);
             }
@@ -332,7 +347,9 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 cascade += next.inserted.size();
                 scope.check();
             }
-            (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff ? t_refine : t_topology) += since(tr);
+            (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff || rep.kind == Violation::FacetAngle
+                 ? t_refine
+                 : t_topology) += since(tr);
             if (std::getenv("ISODEL_TRACE"))
                 std::fprintf(stderr, "round %d: %zu inserted (+%zu cascade), %.2f ms\n", st.rounds, ins.inserted.size(),
                              cascade, 1e3 * since(tr));
@@ -346,6 +363,10 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             // are a neighbour's, and the candidates left may be vertices already; the merge's
             // own loop checks everything again.
             if (ins.inserted.empty() && run.inserted) break;
+            if (ins.inserted.empty() && rep.kind == Violation::FacetAngle) {
+                st.facet_angle_stop = "no progress"; // its candidates are vertices already
+                continue;
+            }
             if (ins.inserted.empty()) {
                 std::ostringstream os;
                 os << "no progress fixing " << to_string(rep.kind) << " (" << rep.candidates.size()
@@ -392,6 +413,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         vp.next_id = &next_id;
         vp.interrupter = interrupter;
         vp.adaptive = leaves.get();
+        vp.improve = options.improve_tets;
         result.tets = build_volume_mesh(dt, cache, field, *g_mask, result.surface, vp, st.tets);
         st.seconds["tets"] = since(t0);
     }

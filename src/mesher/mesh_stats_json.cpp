@@ -10,7 +10,8 @@ std::string to_json(const MeshStats& s)
     o.precision(17);
     o << "{\n  \"counts\": {\"E\": " << s.e_points << ", \"G\": " << s.g_points
       << ", \"N_topology\": " << s.n_topology << ", \"N_geometry\": " << s.n_geometry
-      << ", \"snapped\": " << s.snapped << ", \"vertices\": " << s.vertices
+      << ", \"snapped\": " << s.snapped << ", \"N_facet_angle\": " << s.n_facet_angle
+      << ", \"facet_angle_stop\": \"" << s.facet_angle_stop << "\", \"vertices\": " << s.vertices
       << ", \"triangles\": " << s.triangles << ", \"rounds\": " << s.rounds << "},\n";
     o << "  \"effective_isovalue\": " << s.effective_isovalue << ",\n  \"eps_world\": " << s.eps_world
       << ",\n  \"seconds\": {";
@@ -47,6 +48,8 @@ std::string to_json(const MeshStats& s)
           << ",\n    \"tets_touching_surface\": " << t.tets_touching_surface
           << ", \"min_dihedral_deg_off_surface\": " << t.min_dihedral_deg_off_surface
           << ", \"max_radius_edge_off_surface\": " << t.max_radius_edge_off_surface
+          << ",\n    \"min_dihedral_deg_delaunay\": " << t.min_dihedral_deg_delaunay
+          << ", \"vertices_moved\": " << t.vertices_moved << ", \"vertices_removed\": " << t.vertices_removed << ", \"flips\": " << t.flips
           << ",\n    \"dihedral_histogram_10deg\": [";
         for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
         o << "]}";

@@ -5,6 +5,7 @@
 #include "mesher/interior_points.h"
 #include "mesher/region_labels.h"
 #include "mesher/surface_extraction.h"
+#include "mesher/tet_improvement.h"
 #include "mesher/tet_quality.h"
 
 #include <isodel/errors.h>
@@ -27,6 +28,38 @@ void check_surface_unchanged(const Delaunay& dt, const FacetCache& cache, const 
     os << "DELVOLMESH: " << step << " changed the restricted Delaunay surface (" << before.triangles.size()
        << " triangles before, " << after.triangles.size() << " after)";
     throw GuaranteeViolated(os.str());
+}
+
+/// Canonical tet order: each tet's indices sorted, its orientation restored with one
+/// transposition when the sort was an odd permutation, then the tets sorted. The mesh then
+/// depends only on the vertex numbering, not on the triangulation's memory layout.
+void canonical_order(TetMesh& mesh)
+{
+    struct Tet {
+        std::array<std::int32_t, 4> v;
+        std::int8_t region;
+    };
+    std::vector<Tet> tets;
+    tets.reserve(mesh.tets.size());
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        std::array<std::int32_t, 4> a = mesh.tets[t];
+        bool odd = false;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j + 1 < 4 - i; ++j)
+                if (a[j] > a[j + 1]) {
+                    std::swap(a[j], a[j + 1]);
+                    odd = !odd;
+                }
+        if (odd) std::swap(a[2], a[3]);
+        tets.push_back({a, std::int8_t(mesh.tet_region[t])});
+}
+std::sort(tets.begin(), tets.end(), [](const Tet& x, const Tet& y) { return x.v < y.v; });
+mesh.tets.clear();
+mesh.tet_region.clear();
+for (const auto& t : tets) {
+    mesh.tets.push_back(t.v);
+    mesh.tet_region.push_back(t.region);
+}
 }
 
 } // namespace
@@ -133,34 +166,28 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
         index[id] = std::int32_t(mesh.vertices.size());
         mesh.vertices.push_back({v->point().x(), v->point().y(), v->point().z()});
     }
-    struct Tet {
-        std::array<std::int32_t, 4> v;
-        std::int8_t region;
-    };
-    std::vector<Tet> tets;
-    tets.reserve(kept.size());
     for (const auto& [vs, l] : kept) {
-        // CGAL stores finite cells positively oriented; sort the indices and restore the
-        // orientation with one transposition when the sort was an odd permutation.
-        std::array<std::int32_t, 4> a;
-        for (int j = 0; j < 4; ++j) a[j] = index.at(vs[j]->info().id);
-        bool odd = false;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j + 1 < 4 - i; ++j)
-                if (a[j] > a[j + 1]) {
-                    std::swap(a[j], a[j + 1]);
-                    odd = !odd;
-                }
-        if (odd) std::swap(a[2], a[3]);
-        tets.push_back({a, l});
+        mesh.tets.push_back({index.at(vs[0]->info().id), index.at(vs[1]->info().id), index.at(vs[2]->info().id),
+                             index.at(vs[3]->info().id)});
+        mesh.tet_region.push_back(l);
     }
-    std::sort(tets.begin(), tets.end(), [](const Tet& x, const Tet& y) { return x.v < y.v; });
-    mesh.tets.reserve(tets.size());
-    mesh.tet_region.reserve(tets.size());
-    for (const auto& t : tets) {
-        mesh.tets.push_back(t.v);
-        mesh.tet_region.push_back(t.region);
+    kept.clear();
+    scope.check(85);
+
+    // 6. Canonical order, then quality (tet_improvement.h): smoothing, collapses and flips away
+    // from M; M, the regions and their volumes stay. Sequential on the canonical order, so the
+    // result does not depend on the thread count.
+    canonical_order(mesh);
+    if (params.improve) {
+        const TetImprovementStats imp = improve_tets(mesh, surface.vertices.size(), TetImprovementParams());
+        st.min_dihedral_deg_delaunay = imp.min_dihedral_before_deg;
+        st.vertices_moved = imp.vertices_moved;
+        st.vertices_removed = imp.vertices_removed;
+        st.flips = imp.flips_23 + imp.flips_32;
     }
+    scope.check(95);
+
+    canonical_order(mesh);
     mesh.triangles = surface.triangles;
     measure_tet_quality(mesh, surface.vertices.size(), st);
     st.volume_enclosed_by_surface = enclosed_volume(surface);

@@ -27,6 +27,9 @@ struct VolumeMeshParams {
     Interrupter* interrupter = nullptr;
     /// On an adaptive grid: G' is the leaf corners only (adaptive_points.h).
     const octree::AdaptiveGrid::Reader* adaptive = nullptr;
+    /// Improve the worst tets by smoothing and flips away from M (tet_improvement.h); false
+    /// keeps the Delaunay tetrahedra.
+    bool improve = true;
 };
 
 /// Inserts G' into \p dt (through \p cache), checks that M is unchanged, classifies the cells

@@ -26,7 +26,8 @@ openvdb::FloatGrid::Ptr sphere_grid()
                               [](const openvdb::Vec3d& x) { return testing::sphere_f(x, kCentre, 7.2); });
 }
 
-MeshResult mesh_tets(const openvdb::FloatGrid& grid, double iso, Inside inside, TetRegion region, int threads = 0)
+MeshResult mesh_tets(const openvdb::FloatGrid& grid, double iso, Inside inside, TetRegion region, int threads = 0,
+                     bool improve = true)
 {
     MeshOptions mo;
     mo.isovalue = iso;
@@ -34,6 +35,7 @@ MeshResult mesh_tets(const openvdb::FloatGrid& grid, double iso, Inside inside, 
     mo.eps_voxels = 0.5;
     mo.threads = threads;
     mo.tets = region;
+    mo.improve_tets = improve;
     return mesh_isosurface(grid, mo);
 }
 
@@ -67,7 +69,7 @@ std::array<double, 3> circumcentre(const std::array<double, 3>& p0, const std::a
 TEST_CASE("volume mesh: sphere, inside region", "[mesher][volume_mesh]")
 {
     const auto grid = sphere_grid();
-    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside);
+    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside, 0, /*improve=*/false);
     testing::require_volume_mesh(r, TetRegion::Inside, "sphere inside");
     CHECK(r.stats.tets.tets_outside == 0);
     CHECK(r.stats.tets.g_prime > 0);
@@ -76,7 +78,7 @@ TEST_CASE("volume mesh: sphere, inside region", "[mesher][volume_mesh]")
     CHECK(std::abs(r.stats.tets.volume_inside - ball) < 4 * M_PI * R * R * 0.25);
     CHECK(r.stats.tets.min_dihedral_deg > 0);
     CHECK(r.stats.tets.max_dihedral_deg < 180);
-    // Tets of grid points only are pieces of lattice cubes (src/mesher/tet_quality.h).
+    // Delaunay tets of grid points only are pieces of lattice cubes (src/mesher/tet_quality.h).
     CHECK(r.stats.tets.min_dihedral_deg_off_surface >= 35.26);
     CHECK(r.stats.tets.max_radius_edge_off_surface <= 0.8661);
     CHECK(r.stats.seconds.count("tets") == 1);
@@ -112,6 +114,45 @@ TEST_CASE("volume mesh: bundled torus.vdb (level set, inside below)", "[mesher][
     CHECK(s.surface.vertices == r.surface.vertices);
 }
 
+TEST_CASE("tet improvement keeps M, the regions and the volumes, and lifts the worst angles",
+          "[mesher][volume_mesh][tet_improvement]")
+{
+    const Volume vol = read_volume(std::string(ISODEL_TEST_DATA) + "/torus.vdb");
+    const auto grid = sphere_grid();
+    struct Case {
+        const openvdb::FloatGrid* grid;
+        Inside inside;
+        TetRegion region;
+        const char* what;
+    };
+    for (const Case& c : {Case{grid.get(), Inside::Above, TetRegion::Both, "sphere both"},
+                          Case{grid.get(), Inside::Above, TetRegion::Inside, "sphere inside"},
+                          Case{vol.grid.get(), vol.default_inside, TetRegion::Both, "torus.vdb both"}}) {
+        const MeshResult del = mesh_tets(*c.grid, 0.0, c.inside, c.region, 0, false);
+        const MeshResult imp = mesh_tets(*c.grid, 0.0, c.inside, c.region, 0, true);
+        INFO(c.what << ": Delaunay " << del.stats.tets.min_dihedral_deg << " deg, " << del.stats.tets.tets_below_10deg
+                    << " under 10; improved " << imp.stats.tets.min_dihedral_deg << " deg, "
+                    << imp.stats.tets.tets_below_10deg << " under 10");
+        testing::require_volume_mesh(del, c.region, std::string(c.what) + " Delaunay");
+        testing::require_volume_mesh(imp, c.region, std::string(c.what) + " improved");
+        // M is the same mesh, and the improved inside region still has M as its boundary
+        // (require_volume_mesh) and the same volume.
+        CHECK(imp.surface.vertices == del.surface.vertices);
+        CHECK(imp.surface.triangles == del.surface.triangles);
+        CHECK(std::abs(imp.stats.tets.volume_inside - del.stats.tets.volume_inside) <=
+              1e-9 * (1 + del.stats.tets.volume_inside));
+        CHECK(std::abs(imp.stats.tets.volume_outside - del.stats.tets.volume_outside) <=
+              1e-9 * (1 + del.stats.tets.volume_outside));
+        // What it starts from is the Delaunay mesh, and it only ever improves.
+        CHECK(imp.stats.tets.min_dihedral_deg_delaunay == del.stats.tets.min_dihedral_deg);
+        CHECK(del.stats.tets.vertices_moved + del.stats.tets.flips + del.stats.tets.vertices_removed == 0);
+        CHECK(imp.stats.tets.vertices_moved + imp.stats.tets.flips + imp.stats.tets.vertices_removed > 0);
+        CHECK(imp.stats.tets.min_dihedral_deg >= del.stats.tets.min_dihedral_deg);
+        CHECK(imp.stats.tets.tets_below_10deg < del.stats.tets.tets_below_10deg);
+        CHECK(imp.stats.tets.vertices == imp.tets.vertices.size());
+    }
+}
+
 TEST_CASE("volume mesh: same tetrahedra with 1 and 2 threads", "[mesher][volume_mesh][determinism]")
 {
     const auto grid = sphere_grid();
@@ -125,8 +166,9 @@ TEST_CASE("volume mesh: same tetrahedra with 1 and 2 threads", "[mesher][volume_
 TEST_CASE("volume mesh: flood-fill labels agree with the sign of F at the circumcentres",
           "[mesher][volume_mesh]")
 {
+    // Labels are decided on the Delaunay tets (the improvement only keeps them).
     const auto grid = sphere_grid();
-    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Both);
+    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Both, 0, /*improve=*/false);
     const octree::SampleField field(grid, 0.0, Inside::Above);
     const octree::SampleField::Reader reader(field);
     std::size_t disagree = 0;

@@ -23,6 +23,8 @@ struct MeshCliOptions {
     std::size_t max_points = 0;
     bool quiet = false;
     bool snap = false;
+    bool no_improve = false;
+    double facet_angle = 0;
 };
 } // namespace
 
@@ -41,6 +43,12 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     cmd->add_option("--tets", o->tets, "Also write a tetrahedral mesh (.mesh, .vtu, .msh)");
     cmd->add_option("--region", o->region, "Tetrahedra to keep: inside|outside|both")
         ->check(CLI::IsMember({"inside", "outside", "both"}));
+    cmd->add_option("--facet-angle", o->facet_angle,
+                    "Also refine M's triangles to this smallest angle in degrees (0 = off; up to ~30), "
+                    "after every guarantee holds")
+        ->check(CLI::Range(0.0, 35.0));
+    cmd->add_flag("--no-improve-tets", o->no_improve,
+                  "Keep the Delaunay tetrahedra (no smoothing or flips; M and the regions are the same either way)");
     cmd->add_option("--threads", o->threads, "Threads (0 = all); the mesh does not depend on it");
     cmd->add_option("--stats", o->stats, "Write statistics as JSON");
     cmd->add_option("--max-rounds", o->max_rounds, "Bound on refinement rounds");
@@ -84,6 +92,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         if (!o->tets.empty())
             mo.tets = o->region == "both" ? TetRegion::Both
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
+        mo.improve_tets = !o->no_improve;
+        mo.facet_angle_deg = o->facet_angle;
         // An adaptive file (`isodel decimate`): mesh on its leaves (Property IV).
         MeshResult res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
                                                  : mesh_isosurface(*vol.grid, mo, &progress);
@@ -116,7 +126,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                           << " deg, max radius-edge ratio " << t.max_radius_edge << "; " << t.tets_below_10deg
                           << " tets under 10 deg\n  away from the surface (tets with no surface vertex): dihedral >= "
                           << t.min_dihedral_deg_off_surface << " deg, radius-edge <= " << t.max_radius_edge_off_surface
-                          << "\n  dihedral histogram (10 deg bins):";
+                          << "\n  improvement: smallest dihedral angle " << t.min_dihedral_deg_delaunay
+                          << " deg before (Delaunay), " << t.vertices_moved << " vertices moved, " << t.vertices_removed
+                          << " removed, " << t.flips
+                          << " flips\n  dihedral histogram (10 deg bins):";
                 for (auto n : t.dihedral_histogram) std::cerr << ' ' << n;
                 std::cerr << "\n";
             }

@@ -1,0 +1,387 @@
+#include "mesher/tet_improvement.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+namespace isodel::mesher {
+namespace {
+
+using V3 = std::array<double, 3>;
+using Tet = std::array<std::int32_t, 4>;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(const V3& a, const V3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+constexpr double kPi = 3.14159265358979323846;
+
+/// Exact sign of the orientation of (a, b, c, d) (EPICK's filtered predicate on the doubles).
+int orient(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    auto P = [](const V3& p) { return K::Point_3(p[0], p[1], p[2]); };
+    return int(CGAL::orientation(P(a), P(b), P(c), P(d)));
+}
+
+double volume(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    return dot(sub(b, a), cross(sub(c, a), sub(d, a))) / 6.0;
+}
+
+/// A flip may only replace tets by tets filling the same polytope: the volumes must agree.
+bool same_volume(double before, double after) { return std::abs(before - after) <= 1e-9 * std::abs(before); }
+
+class Improver {
+public:
+    Improver(TetMesh& m, std::size_t surface_vertices, double target_deg)
+        : m_(m), fixed_(surface_vertices), target_(target_deg), star_(m.vertices.size())
+    {
+        for (std::size_t t = 0; t < m.tets.size(); ++t) add(m.tets[t], m.tet_region[t]);
+    }
+
+    TetImprovementStats run(const TetImprovementParams& params)
+    {
+        TetImprovementStats st;
+        st.min_dihedral_before_deg = INFINITY;
+        for (std::size_t t = 0; t < tets_.size(); ++t) st.min_dihedral_before_deg = std::min(st.min_dihedral_before_deg, q(t));
+        if (tets_.empty()) st.min_dihedral_before_deg = 0;
+        for (; st.passes < params.max_passes; ++st.passes) {
+            std::vector<std::tuple<double, Tet, std::size_t>> bad;
+            for (std::size_t t = 0; t < tets_.size(); ++t)
+                if (alive_[t] && q(t) < params.target_deg) bad.emplace_back(q(t), tets_[t], t);
+            std::sort(bad.begin(), bad.end());
+            std::size_t changed = 0;
+            for (const auto& item : bad) {
+                const std::size_t t = std::get<2>(item);
+                if (!alive_[t] || q(t) >= params.target_deg) continue;
+                for (int j = 0; j < 4; ++j)
+                    if (smooth(tets_[t][j])) ++st.vertices_moved, ++changed;
+                if (q(t) >= params.target_deg) continue;
+                for (int j = 0; j < 4 && alive_[t]; ++j)
+                    if (collapse(tets_[t][j])) ++st.vertices_removed, ++changed;
+                for (int i = 0; i < 4 && alive_[t]; ++i)
+                    for (int j = i + 1; j < 4 && alive_[t]; ++j)
+                        if (flip32(tets_[t][i], tets_[t][j])) ++st.flips_32, ++changed;
+                for (int j = 0; j < 4 && alive_[t]; ++j)
+                    if (flip23(t, j)) ++st.flips_23, ++changed;
+            }
+            if (changed == 0) break;
+        }
+        // Write back; vertices removed by collapses leave the numbering (M's keep theirs).
+        std::vector<std::int32_t> renumber(m_.vertices.size(), -1);
+        std::vector<V3> kept(m_.vertices.begin(), m_.vertices.begin() + std::ptrdiff_t(fixed_));
+        for (std::size_t v = 0; v < fixed_; ++v) renumber[v] = std::int32_t(v);
+        for (std::size_t v = fixed_; v < m_.vertices.size(); ++v)
+            if (!star_[v].empty()) {
+                renumber[v] = std::int32_t(kept.size());
+                kept.push_back(m_.vertices[v]);
+            }
+        m_.vertices = std::move(kept);
+        m_.tets.clear();
+        m_.tet_region.clear();
+        for (std::size_t t = 0; t < tets_.size(); ++t)
+            if (alive_[t]) {
+                Tet x = tets_[t];
+                for (auto& w : x) w = renumber[std::size_t(w)];
+                m_.tets.push_back(x);
+                m_.tet_region.push_back(region_[t]);
+            }
+        return st;
+    }
+
+private:
+    const V3& P(std::int32_t v) const { return m_.vertices[std::size_t(v)]; }
+    double q(std::size_t t) const { return min_dihedral_deg(P(tets_[t][0]), P(tets_[t][1]), P(tets_[t][2]), P(tets_[t][3])); }
+
+    void add(const Tet& t, std::int32_t region)
+    {
+        const auto id = std::int32_t(tets_.size());
+        tets_.push_back(t);
+        region_.push_back(region);
+        alive_.push_back(1);
+        for (std::int32_t v : t) star_[std::size_t(v)].push_back(id);
+    }
+    void kill(std::size_t t)
+    {
+        alive_[t] = 0;
+        for (std::int32_t v : tets_[t]) {
+            auto& s = star_[std::size_t(v)];
+            s.erase(std::find(s.begin(), s.end(), std::int32_t(t)));
+        }
+    }
+    /// Alive tets holding all of \p vs.
+    std::vector<std::int32_t> tets_with(std::initializer_list<std::int32_t> vs) const
+    {
+        std::vector<std::int32_t> out;
+        const auto& s = star_[std::size_t(*vs.begin())];
+        for (std::int32_t t : s) {
+            bool all = true;
+            for (std::int32_t v : vs) all &= std::find(tets_[t].begin(), tets_[t].end(), v) != tets_[t].end();
+            if (all) out.push_back(t);
+        }
+        return out;
+    }
+
+    /// A vertex is free when it is not M's, its star is closed (every triangle (v, x, y) in two
+    /// of its tets: not on the mesh's outer boundary) and all of one region (not on M).
+    bool free_star(std::int32_t v) const
+    {
+        if (std::size_t(v) < fixed_) return false;
+        const auto& s = star_[std::size_t(v)];
+        if (s.size() < 4) return false;
+        std::vector<std::pair<std::int32_t, std::int32_t>> link;
+        for (std::int32_t t : s) {
+            if (region_[t] != region_[s.front()]) return false;
+            std::int32_t o[3], n = 0;
+            for (std::int32_t w : tets_[t])
+                if (w != v) o[n++] = w;
+            for (int i = 0; i < 3; ++i) link.push_back(std::minmax(o[i], o[(i + 1) % 3]));
+        }
+        std::sort(link.begin(), link.end());
+        for (std::size_t i = 0; i < link.size(); i += 2)
+            if (i + 1 >= link.size() || link[i] != link[i + 1] || (i + 2 < link.size() && link[i + 2] == link[i])) return false;
+        return true;
+    }
+
+    /// Vertex smoothing: \p v moves when it is free (not M's, star closed, one region) and a
+    /// candidate position raises its star's worst angle.
+    bool smooth(std::int32_t v)
+    {
+        if (!free_star(v)) return false;
+        const auto& s = star_[std::size_t(v)];
+        std::vector<std::pair<std::int32_t, std::int32_t>> link;
+        for (std::int32_t t : s)
+            for (int i = 0; i < 4; ++i)
+                if (tets_[t][i] != v)
+                    for (int j = i + 1; j < 4; ++j)
+                        if (tets_[t][j] != v) link.push_back(std::minmax(tets_[t][i], tets_[t][j]));
+
+        // A move must raise the star's worst angle without adding tets below the target.
+        auto star_quality = [&](const V3& x, double& worst, int& bad) {
+            worst = 180;
+            bad = 0;
+            for (std::int32_t t : s) {
+                V3 p[4];
+                for (int j = 0; j < 4; ++j) p[j] = tets_[t][j] == v ? x : P(tets_[t][j]);
+                if (orient(p[0], p[1], p[2], p[3]) <= 0) return false;
+                const double a = min_dihedral_deg(p[0], p[1], p[2], p[3]);
+                worst = std::min(worst, a);
+                bad += a < target_;
+            }
+            return true;
+        };
+        const V3 x0 = P(v);
+        double current;
+        int current_bad;
+        if (!star_quality(x0, current, current_bad)) return false;
+        // Candidates: toward the centroid of the link, and off the face opposite v in the worst
+        // tet, to the apex height of a regular tet on that face.
+        std::vector<V3> cand;
+        V3 c{0, 0, 0};
+        std::size_t nl = 0;
+        for (const auto& [a, b] : link) {
+            for (int k = 0; k < 3; ++k) c[k] += P(a)[k] + P(b)[k];
+            nl += 2;
+        }
+        for (int k = 0; k < 3; ++k) c[k] /= double(nl);
+        for (double f : {1.0, 0.5, 0.25})
+            cand.push_back({x0[0] + f * (c[0] - x0[0]), x0[1] + f * (c[1] - x0[1]), x0[2] + f * (c[2] - x0[2])});
+        std::int32_t worst_t = s.front();
+        for (std::int32_t t : s)
+            if (q(std::size_t(t)) < q(std::size_t(worst_t))) worst_t = t;
+        {
+            std::int32_t o[3], n = 0;
+            for (std::int32_t w : tets_[worst_t])
+                if (w != v) o[n++] = w;
+            const V3 fc{(P(o[0])[0] + P(o[1])[0] + P(o[2])[0]) / 3, (P(o[0])[1] + P(o[1])[1] + P(o[2])[1]) / 3,
+                        (P(o[0])[2] + P(o[1])[2] + P(o[2])[2]) / 3};
+            V3 nrm = cross(sub(P(o[1]), P(o[0])), sub(P(o[2]), P(o[0])));
+            const double nn = norm(nrm);
+            if (nn > 0) {
+                if (dot(nrm, sub(x0, fc)) < 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
+                const double edge = (norm(sub(P(o[1]), P(o[0]))) + norm(sub(P(o[2]), P(o[1]))) + norm(sub(P(o[0]), P(o[2])))) / 3;
+                const double h = std::sqrt(2.0 / 3.0) * edge;
+                for (double f : {1.0, 0.5}) {
+                    const V3 apex{fc[0] + f * h * nrm[0] / nn, fc[1] + f * h * nrm[1] / nn, fc[2] + f * h * nrm[2] / nn};
+                    cand.push_back(apex);
+                    cand.push_back({0.5 * (apex[0] + x0[0]), 0.5 * (apex[1] + x0[1]), 0.5 * (apex[2] + x0[2])});
+                }
+            }
+        }
+        double best = current;
+        const V3* best_x = nullptr;
+        for (const V3& x : cand) {
+            double w;
+            int b;
+            if (star_quality(x, w, b) && b <= current_bad && w > best + 1e-6) {
+                best = w;
+                best_x = &x;
+            }
+        }
+        if (!best_x) return false;
+        m_.vertices[std::size_t(v)] = *best_x;
+        return true;
+    }
+
+    /// Edge collapse: the free vertex \p v goes, its star becomes the cone from a neighbour x
+    /// over the triangles of v's link that miss x. Valid when every new tet is positively
+    /// oriented (x then sees the whole link: the cone fills exactly v's star); done for the
+    /// neighbour giving the best worst angle, if that beats the star's.
+    bool collapse(std::int32_t v)
+    {
+        if (std::size_t(v) < fixed_ || !free_star(v)) return false;
+        const std::vector<std::int32_t> s = star_[std::size_t(v)];
+        double current = 180;
+        for (std::int32_t t : s) current = std::min(current, q(std::size_t(t)));
+        std::vector<std::int32_t> nbrs;
+        for (std::int32_t t : s)
+            for (std::int32_t w : tets_[t])
+                if (w != v) nbrs.push_back(w);
+        std::sort(nbrs.begin(), nbrs.end());
+        nbrs.erase(std::unique(nbrs.begin(), nbrs.end()), nbrs.end());
+        double best = current + 1e-6;
+        std::int32_t best_x = -1;
+        for (std::int32_t x : nbrs) {
+            double worst = 180;
+            bool ok = true;
+            for (std::int32_t t : s) {
+                Tet n = tets_[t];
+                if (std::find(n.begin(), n.end(), x) != n.end()) continue;
+                for (auto& w : n)
+                    if (w == v) w = x;
+                if (orient(P(n[0]), P(n[1]), P(n[2]), P(n[3])) <= 0) {
+                    ok = false;
+                    break;
+                }
+                worst = std::min(worst, min_dihedral_deg(P(n[0]), P(n[1]), P(n[2]), P(n[3])));
+                if (worst <= best) {
+                    ok = false;
+                    break;
+                }
+            }
+            if (ok && worst > best) {
+                best = worst;
+                best_x = x;
+            }
+        }
+        if (best_x < 0) return false;
+        const std::int32_t region = region_[s.front()];
+        std::vector<Tet> fresh;
+        for (std::int32_t t : s) {
+            Tet n = tets_[t];
+            if (std::find(n.begin(), n.end(), best_x) != n.end()) continue;
+            for (auto& w : n)
+                if (w == v) w = best_x;
+            fresh.push_back(n);
+        }
+        for (std::int32_t t : s) kill(std::size_t(t));
+        for (const Tet& n : fresh) add(n, region);
+        return true;
+    }
+
+    /// 2-3 flip of the face of tet t opposite its vertex j.
+    bool flip23(std::size_t t, int j)
+    {
+        const Tet& T = tets_[t];
+        const std::int32_t d = T[j];
+        std::int32_t f[3], n = 0;
+        for (int i = 0; i < 4; ++i)
+            if (i != j) f[n++] = T[i];
+        std::int32_t u = -1;
+        for (std::int32_t x : tets_with({f[0], f[1], f[2]}))
+            if (std::size_t(x) != t) u = x;
+        if (u < 0 || region_[u] != region_[t]) return false;
+        std::int32_t e = -1;
+        for (std::int32_t w : tets_[u])
+            if (w != f[0] && w != f[1] && w != f[2]) e = w;
+        Tet nt[3] = {{f[0], f[1], d, e}, {f[1], f[2], d, e}, {f[2], f[0], d, e}};
+        const int s0 = orient(P(f[0]), P(f[1]), P(d), P(e));
+        if (s0 == 0) return false;
+        for (auto& x : nt) {
+            if (orient(P(x[0]), P(x[1]), P(x[2]), P(x[3])) != s0) return false;
+            if (s0 < 0) std::swap(x[2], x[3]);
+        }
+        return replace({std::int32_t(t), u}, {nt[0], nt[1], nt[2]});
+    }
+
+    /// 3-2 flip of edge (a, b) when exactly three tets of one region surround it.
+    bool flip32(std::int32_t a, std::int32_t b)
+    {
+        const auto ring = tets_with({a, b});
+        if (ring.size() != 3) return false;
+        std::vector<std::int32_t> others;
+        for (std::int32_t t : ring) {
+            if (region_[t] != region_[ring[0]]) return false;
+            for (std::int32_t w : tets_[t])
+                if (w != a && w != b) others.push_back(w);
+        }
+        std::sort(others.begin(), others.end());
+        // Closed ring: three other vertices, each in two of the tets.
+        if (others[0] != others[1] || others[2] != others[3] || others[4] != others[5] || others[1] == others[2] ||
+            others[3] == others[4])
+            return false;
+        const std::int32_t c = others[0], d = others[2], e = others[4];
+        const int sa = orient(P(c), P(d), P(e), P(a)), sb = orient(P(c), P(d), P(e), P(b));
+        if (sa == 0 || sb != -sa) return false;
+        Tet t1 = sa > 0 ? Tet{c, d, e, a} : Tet{d, c, e, a};
+        Tet t2 = sb > 0 ? Tet{c, d, e, b} : Tet{d, c, e, b};
+        return replace({ring[0], ring[1], ring[2]}, {t1, t2});
+    }
+
+    /// Replaces \p old by \p fresh when they fill the same volume and the worst angle grows.
+    bool replace(std::initializer_list<std::int32_t> old, std::initializer_list<Tet> fresh)
+    {
+        double vo = 0, vn = 0, qo = 180, qn = 180;
+        for (std::int32_t t : old) {
+            const Tet& x = tets_[t];
+            vo += volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
+            qo = std::min(qo, q(std::size_t(t)));
+        }
+        for (const Tet& x : fresh) {
+            vn += volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
+            qn = std::min(qn, min_dihedral_deg(P(x[0]), P(x[1]), P(x[2]), P(x[3])));
+        }
+        if (!same_volume(vo, vn) || qn <= qo + 1e-6) return false;
+        const std::int32_t region = region_[*old.begin()];
+        for (std::int32_t t : old) kill(std::size_t(t));
+        for (const Tet& x : fresh) add(x, region);
+        return true;
+    }
+
+    TetMesh& m_;
+    std::size_t fixed_;
+    double target_;
+    std::vector<Tet> tets_;
+    std::vector<std::int32_t> region_;
+    std::vector<char> alive_;
+    std::vector<std::vector<std::int32_t>> star_;
+};
+
+} // namespace
+
+double min_dihedral_deg(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    const V3* p[4] = {&a, &b, &c, &d};
+    static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+    double m = 180;
+    for (const auto& e : kEdges) {
+        const V3 ev = sub(*p[e[1]], *p[e[0]]);
+        const V3 n1 = cross(ev, sub(*p[e[2]], *p[e[0]]));
+        const V3 n2 = cross(ev, sub(*p[e[3]], *p[e[0]]));
+        const double den = norm(n1) * norm(n2);
+        if (!(den > 0)) return 0;
+        m = std::min(m, std::acos(std::clamp(dot(n1, n2) / den, -1.0, 1.0)) * 180.0 / kPi);
+    }
+    return m;
+}
+
+TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, const TetImprovementParams& params)
+{
+    return Improver(mesh, surface_vertices, params.target_deg).run(params);
+}
+
+} // namespace isodel::mesher

@@ -1,0 +1,49 @@
+#pragma once
+// Internal: improving the worst tetrahedra of DELVOLMESH's output without touching M.
+//
+// The bad elements of Del(E u G u N u G') all touch M (tet_quality.h): E points sit anywhere on
+// their grid edges, so a grid point or a second surface point can lie almost in the plane of
+// three others. Delaunay refinement cannot help there (a circumcentre inside a surface Delaunay
+// ball would change M), so, like Mesh_3's perturb and exude, this step gives up the Delaunay
+// property of the tetrahedra (not of M) for their shape. It is local, greedy and only ever
+// improves (after Klingner & Shewchuk, "Aggressive tetrahedral mesh improvement", 2007):
+//   - vertex smoothing: a vertex that is not M's and not on the region's outer boundary moves
+//     to the best of a few candidate positions, if every tet of its star stays positively
+//     oriented (exact orientation predicate) and the star's worst dihedral angle grows;
+//   - edge collapse: such a vertex goes, its star re-filled as the cone from one of its
+//     neighbours (any vertex, M's included, which stays put), if every new tet is positively
+//     oriented and the worst angle grows;
+//   - 2-3 and 3-2 flips: two tets sharing a face, or three around an edge, all of one region,
+//     are replaced when every new tet is positively oriented, the union's volume is the same
+//     and the worst dihedral angle grows.
+// Nothing changes a vertex of M, a triangle of M (its two sides are different regions, or it
+// bounds the mesh) or a region tag, so the inside region's boundary stays M exactly and its
+// volume stays the volume M encloses. Each pass visits the tets below the target angle in a
+// fixed order (by angle, then by vertex indices), so the result does not depend on threads.
+#include <isodel/surface_mesh.h>
+
+#include <cstddef>
+
+namespace isodel::mesher {
+
+struct TetImprovementParams {
+    double target_deg = 15.0;   ///< work on tets whose smallest dihedral angle is below this
+    int max_passes = 4;         ///< bound on the sweeps over the bad tets
+};
+
+struct TetImprovementStats {
+    double min_dihedral_before_deg = 0;
+    std::size_t vertices_moved = 0, vertices_removed = 0, flips_23 = 0, flips_32 = 0;
+    int passes = 0;
+};
+
+/// Improves \p mesh in place (vertices with index < \p surface_vertices are M's and stay put).
+/// Tets keep positive orientation; the result lists tets in no particular order, and the
+/// vertices after M's are renumbered (collapses remove some).
+TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, const TetImprovementParams& params);
+
+/// Smallest dihedral angle of the tetrahedron (a, b, c, d), in degrees (0 when degenerate).
+double min_dihedral_deg(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                        const std::array<double, 3>& c, const std::array<double, 3>& d);
+
+} // namespace isodel::mesher
