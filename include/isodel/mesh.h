@@ -56,9 +56,9 @@ struct MeshOptions {
     /// stopped: MeshStats::facet_angle_stop.
     double facet_angle_deg = 0;
     TetRegion tets = TetRegion::None;    ///< also build a tetrahedral mesh (DELVOLMESH)
-    /// Improve the worst tets (smoothing of vertices off M, 2-3/3-2 flips within a region): M,
-    /// the region tags and the volumes stay; the tets are no longer all Delaunay. false keeps
-    /// Del(E u G u N u G') restricted to the region(s).
+    /// Improve the worst tets (smoothing and collapses of vertices off M, flips and edge removal
+    /// within a region): M, the region tags and the volumes stay; the tets are no longer all
+    /// Delaunay. false keeps Del(E u G u N u G') restricted to the region(s).
     bool improve_tets = true;
     /// Partitioned meshing (paper Fig. 8), dense grids: > 0 cuts the domain into blocks of this
     /// many voxels per axis, meshes each block with a protective collar concurrently, then
@@ -98,6 +98,7 @@ struct TetStats {
     /// made (the figures above are after).
     double min_dihedral_deg_delaunay = 0;
     std::size_t vertices_moved = 0, vertices_removed = 0, flips = 0;
+    double improvement_seconds = 0; ///< part of MeshStats::seconds["tets"]
 };
 
 /// Topology of one connected component of a closed surface mesh.

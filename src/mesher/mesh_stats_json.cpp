@@ -50,6 +50,7 @@ std::string to_json(const MeshStats& s)
           << ", \"max_radius_edge_off_surface\": " << t.max_radius_edge_off_surface
           << ",\n    \"min_dihedral_deg_delaunay\": " << t.min_dihedral_deg_delaunay
           << ", \"vertices_moved\": " << t.vertices_moved << ", \"vertices_removed\": " << t.vertices_removed << ", \"flips\": " << t.flips
+          << ", \"improvement_seconds\": " << t.improvement_seconds
           << ",\n    \"dihedral_histogram_10deg\": [";
         for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
         o << "]}";

@@ -32,13 +32,36 @@ double volume(const V3& a, const V3& b, const V3& c, const V3& d)
     return dot(sub(b, a), cross(sub(c, a), sub(d, a))) / 6.0;
 }
 
-/// A flip may only replace tets by tets filling the same polytope: the volumes must agree.
+/// Tet quality inside the improver: minus the largest cosine of the six dihedral angles, which
+/// grows with the smallest angle (no acos in the inner loops); -1 for a flat tet.
+double quality(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    const V3* p[4] = {&a, &b, &c, &d};
+    static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+    double cmax = -1;
+    for (const auto& e : kEdges) {
+        const V3 ev = sub(*p[e[1]], *p[e[0]]);
+        const V3 n1 = cross(ev, sub(*p[e[2]], *p[e[0]]));
+        const V3 n2 = cross(ev, sub(*p[e[3]], *p[e[0]]));
+        const double den = std::sqrt(dot(n1, n1) * dot(n2, n2));
+        if (!(den > 0)) return -1;
+        cmax = std::max(cmax, dot(n1, n2) / den);
+    }
+    return -std::min(cmax, 1.0);
+}
+double degrees(double q) { return std::acos(std::clamp(-q, -1.0, 1.0)) * 180.0 / kPi; }
+constexpr double kBest = 2;     ///< above every quality
+constexpr double kInvalid = -3; ///< below every quality: an inverted tet
+constexpr double kMargin = 1e-12; ///< an improvement must beat the old quality by this much
+
+/// A flip may only replace tets by tets filling the same polytope. The orientation predicates
+/// decide that exactly; equal volumes are a second, floating-point, sanity check.
 bool same_volume(double before, double after) { return std::abs(before - after) <= 1e-9 * std::abs(before); }
 
 class Improver {
 public:
     Improver(TetMesh& m, std::size_t surface_vertices, double target_deg)
-        : m_(m), fixed_(surface_vertices), target_(target_deg), star_(m.vertices.size())
+        : m_(m), fixed_(surface_vertices), target_(-std::cos(target_deg * kPi / 180.0)), star_(m.vertices.size())
     {
         for (std::size_t t = 0; t < m.tets.size(); ++t) add(m.tets[t], m.tet_region[t]);
     }
@@ -46,26 +69,26 @@ public:
     TetImprovementStats run(const TetImprovementParams& params)
     {
         TetImprovementStats st;
-        st.min_dihedral_before_deg = INFINITY;
-        for (std::size_t t = 0; t < tets_.size(); ++t) st.min_dihedral_before_deg = std::min(st.min_dihedral_before_deg, q(t));
-        if (tets_.empty()) st.min_dihedral_before_deg = 0;
+        double worst = kBest;
+        for (std::size_t t = 0; t < tets_.size(); ++t) worst = std::min(worst, q(t));
+        st.min_dihedral_before_deg = tets_.empty() ? 0 : degrees(worst);
         for (; st.passes < params.max_passes; ++st.passes) {
             std::vector<std::tuple<double, Tet, std::size_t>> bad;
             for (std::size_t t = 0; t < tets_.size(); ++t)
-                if (alive_[t] && q(t) < params.target_deg) bad.emplace_back(q(t), tets_[t], t);
+                if (alive_[t] && q(t) < target_) bad.emplace_back(q(t), tets_[t], t);
             std::sort(bad.begin(), bad.end());
             std::size_t changed = 0;
             for (const auto& item : bad) {
                 const std::size_t t = std::get<2>(item);
-                if (!alive_[t] || q(t) >= params.target_deg) continue;
+                if (!alive_[t] || q(t) >= target_) continue;
                 for (int j = 0; j < 4; ++j)
                     if (smooth(tets_[t][j])) ++st.vertices_moved, ++changed;
-                if (q(t) >= params.target_deg) continue;
+                if (q(t) >= target_) continue;
                 for (int j = 0; j < 4 && alive_[t]; ++j)
-                    if (collapse(tets_[t][j])) ++st.vertices_removed, ++changed;
+                    if (collapse(tets_[t][j], tets_[t])) ++st.vertices_removed, ++changed;
                 for (int i = 0; i < 4 && alive_[t]; ++i)
                     for (int j = i + 1; j < 4 && alive_[t]; ++j)
-                        if (flip32(tets_[t][i], tets_[t][j])) ++st.flips_32, ++changed;
+                        if (remove_edge(tets_[t][i], tets_[t][j])) ++st.edges_removed, ++changed;
                 for (int j = 0; j < 4 && alive_[t]; ++j)
                     if (flip23(t, j)) ++st.flips_23, ++changed;
             }
@@ -95,12 +118,14 @@ public:
 
 private:
     const V3& P(std::int32_t v) const { return m_.vertices[std::size_t(v)]; }
-    double q(std::size_t t) const { return min_dihedral_deg(P(tets_[t][0]), P(tets_[t][1]), P(tets_[t][2]), P(tets_[t][3])); }
+    double q(std::size_t t) const { return qual_[t]; }
+    double quality_of(const Tet& t) const { return quality(P(t[0]), P(t[1]), P(t[2]), P(t[3])); }
 
     void add(const Tet& t, std::int32_t region)
     {
         const auto id = std::int32_t(tets_.size());
         tets_.push_back(t);
+        qual_.push_back(quality_of(t));
         region_.push_back(region);
         alive_.push_back(1);
         for (std::int32_t v : t) star_[std::size_t(v)].push_back(id);
@@ -162,13 +187,13 @@ private:
 
         // A move must raise the star's worst angle without adding tets below the target.
         auto star_quality = [&](const V3& x, double& worst, int& bad) {
-            worst = 180;
+            worst = kBest;
             bad = 0;
             for (std::int32_t t : s) {
                 V3 p[4];
                 for (int j = 0; j < 4; ++j) p[j] = tets_[t][j] == v ? x : P(tets_[t][j]);
                 if (orient(p[0], p[1], p[2], p[3]) <= 0) return false;
-                const double a = min_dihedral_deg(p[0], p[1], p[2], p[3]);
+                const double a = quality(p[0], p[1], p[2], p[3]);
                 worst = std::min(worst, a);
                 bad += a < target_;
             }
@@ -217,36 +242,35 @@ private:
         for (const V3& x : cand) {
             double w;
             int b;
-            if (star_quality(x, w, b) && b <= current_bad && w > best + 1e-6) {
+            if (star_quality(x, w, b) && b <= current_bad && w > best + kMargin) {
                 best = w;
                 best_x = &x;
             }
         }
         if (!best_x) return false;
         m_.vertices[std::size_t(v)] = *best_x;
+        for (std::int32_t t : s) qual_[std::size_t(t)] = quality_of(tets_[t]);
         return true;
     }
 
     /// Edge collapse: the free vertex \p v goes, its star becomes the cone from a neighbour x
     /// over the triangles of v's link that miss x. Valid when every new tet is positively
     /// oriented (x then sees the whole link: the cone fills exactly v's star); done for the
-    /// neighbour giving the best worst angle, if that beats the star's.
-    bool collapse(std::int32_t v)
+    /// neighbour giving the best worst angle, if that beats the star's. Only the other vertices
+    /// of the bad tet \p bad are tried: collapsing onto them is what removes it.
+    bool collapse(std::int32_t v, const Tet bad)
     {
         if (std::size_t(v) < fixed_ || !free_star(v)) return false;
         const std::vector<std::int32_t> s = star_[std::size_t(v)];
-        double current = 180;
+        double current = kBest;
         for (std::int32_t t : s) current = std::min(current, q(std::size_t(t)));
         std::vector<std::int32_t> nbrs;
-        for (std::int32_t t : s)
-            for (std::int32_t w : tets_[t])
-                if (w != v) nbrs.push_back(w);
-        std::sort(nbrs.begin(), nbrs.end());
-        nbrs.erase(std::unique(nbrs.begin(), nbrs.end()), nbrs.end());
-        double best = current + 1e-6;
+        for (std::int32_t w : bad)
+            if (w != v) nbrs.push_back(w);
+        double best = current + kMargin;
         std::int32_t best_x = -1;
         for (std::int32_t x : nbrs) {
-            double worst = 180;
+            double worst = kBest;
             bool ok = true;
             for (std::int32_t t : s) {
                 Tet n = tets_[t];
@@ -257,7 +281,7 @@ private:
                     ok = false;
                     break;
                 }
-                worst = std::min(worst, min_dihedral_deg(P(n[0]), P(n[1]), P(n[2]), P(n[3])));
+                worst = std::min(worst, quality_of(n));
                 if (worst <= best) {
                     ok = false;
                     break;
@@ -283,7 +307,9 @@ private:
         return true;
     }
 
-    /// 2-3 flip of the face of tet t opposite its vertex j.
+    /// 2-3 flip of the face of tet t opposite its vertex j: valid iff segment de pierces the
+    /// interior of the face (d and e are on opposite sides of it in a valid mesh; the line de
+    /// strictly inside its three edges is the three orientations below agreeing).
     bool flip23(std::size_t t, int j)
     {
         const Tet& T = tets_[t];
@@ -308,34 +334,83 @@ private:
         return replace({std::int32_t(t), u}, {nt[0], nt[1], nt[2]});
     }
 
-    /// 3-2 flip of edge (a, b) when exactly three tets of one region surround it.
-    bool flip32(std::int32_t a, std::int32_t b)
+    /// Edge removal (Shewchuk, "Two discrete optimization algorithms for the topological
+    /// improvement of tetrahedral meshes"): the n = 3..7 tets of one region around edge (a, b)
+    /// are replaced by 2(n - 2) tets, a triangulation of the ring polygon coned to a and to b,
+    /// the one with the best worst angle (dynamic programming over the polygon). n = 3 is the
+    /// 3-2 flip. Every new tet must be positively oriented in the orientation the move induces
+    /// (exact predicate), which makes the new tets fill exactly the old ones.
+    bool remove_edge(std::int32_t a, std::int32_t b)
     {
-        const auto ring = tets_with({a, b});
-        if (ring.size() != 3) return false;
-        std::vector<std::int32_t> others;
-        for (std::int32_t t : ring) {
-            if (region_[t] != region_[ring[0]]) return false;
+        const auto ring_tets = tets_with({a, b});
+        const std::size_t n = ring_tets.size();
+        if (n < 3 || n > 7) return false;
+        // Ring order: for each tet (a, b, x, y) positively oriented, y follows x.
+        std::vector<std::pair<std::int32_t, std::int32_t>> next;
+        for (std::int32_t t : ring_tets) {
+            if (region_[t] != region_[ring_tets[0]]) return false;
+            std::int32_t o[2], m = 0;
             for (std::int32_t w : tets_[t])
-                if (w != a && w != b) others.push_back(w);
+                if (w != a && w != b) o[m++] = w;
+            if (orient(P(a), P(b), P(o[0]), P(o[1])) < 0) std::swap(o[0], o[1]);
+            next.emplace_back(o[0], o[1]);
         }
-        std::sort(others.begin(), others.end());
-        // Closed ring: three other vertices, each in two of the tets.
-        if (others[0] != others[1] || others[2] != others[3] || others[4] != others[5] || others[1] == others[2] ||
-            others[3] == others[4])
-            return false;
-        const std::int32_t c = others[0], d = others[2], e = others[4];
-        const int sa = orient(P(c), P(d), P(e), P(a)), sb = orient(P(c), P(d), P(e), P(b));
-        if (sa == 0 || sb != -sa) return false;
-        Tet t1 = sa > 0 ? Tet{c, d, e, a} : Tet{d, c, e, a};
-        Tet t2 = sb > 0 ? Tet{c, d, e, b} : Tet{d, c, e, b};
-        return replace({ring[0], ring[1], ring[2]}, {t1, t2});
+        std::sort(next.begin(), next.end());
+        std::vector<std::int32_t> r{next[0].first};
+        while (r.size() <= n) {
+            const auto it = std::lower_bound(next.begin(), next.end(), std::make_pair(r.back(), std::int32_t(-1)));
+            if (it == next.end() || it->first != r.back()) return false; // open ring (boundary)
+            if (it->second == r.front()) break;
+            r.push_back(it->second);
+        }
+        if (r.size() != n) return false;
+        double old_q = kBest;
+        for (std::int32_t t : ring_tets) old_q = std::min(old_q, q(std::size_t(t)));
+        // Triangle (i, j, k), i < j < k in ring order: tets (ri, rj, rk, b) and (ri, rk, rj, a).
+        auto tri_q = [&](std::size_t i, std::size_t j, std::size_t k) {
+            const V3 &pi = P(r[i]), &pj = P(r[j]), &pk = P(r[k]);
+            if (orient(pi, pj, pk, P(b)) <= 0 || orient(pi, pk, pj, P(a)) <= 0) return kInvalid;
+            return std::min(quality(pi, pj, pk, P(b)), quality(pi, pk, pj, P(a)));
+        };
+        double best[7][7];
+        int split[7][7];
+        for (std::size_t len = 1; len < n; ++len)
+            for (std::size_t i = 0; i + len < n; ++i) {
+                const std::size_t j = i + len;
+                if (len == 1) {
+                    best[i][j] = kBest;
+                    continue;
+                }
+                best[i][j] = kInvalid;
+                split[i][j] = -1;
+                for (std::size_t k = i + 1; k < j; ++k) {
+                    const double v = std::min({best[i][k], best[k][j], tri_q(i, k, j)});
+                    if (v > best[i][j]) {
+                        best[i][j] = v;
+                        split[i][j] = int(k);
+                    }
+                }
+            }
+        if (!(best[0][n - 1] > old_q + kMargin)) return false;
+        std::vector<Tet> fresh;
+        std::vector<std::pair<std::size_t, std::size_t>> todo{{0, n - 1}};
+        while (!todo.empty()) {
+            const auto [i, j] = todo.back();
+            todo.pop_back();
+            if (j - i < 2) continue;
+            const auto k = std::size_t(split[i][j]);
+            fresh.push_back({r[i], r[k], r[j], b});
+            fresh.push_back({r[i], r[j], r[k], a});
+            todo.push_back({i, k});
+            todo.push_back({k, j});
+        }
+        return replace(ring_tets, fresh);
     }
 
     /// Replaces \p old by \p fresh when they fill the same volume and the worst angle grows.
-    bool replace(std::initializer_list<std::int32_t> old, std::initializer_list<Tet> fresh)
+    bool replace(const std::vector<std::int32_t>& old, const std::vector<Tet>& fresh)
     {
-        double vo = 0, vn = 0, qo = 180, qn = 180;
+        double vo = 0, vn = 0, qo = kBest, qn = kBest;
         for (std::int32_t t : old) {
             const Tet& x = tets_[t];
             vo += volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
@@ -343,10 +418,10 @@ private:
         }
         for (const Tet& x : fresh) {
             vn += volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
-            qn = std::min(qn, min_dihedral_deg(P(x[0]), P(x[1]), P(x[2]), P(x[3])));
+            qn = std::min(qn, quality_of(x));
         }
-        if (!same_volume(vo, vn) || qn <= qo + 1e-6) return false;
-        const std::int32_t region = region_[*old.begin()];
+        if (!same_volume(vo, vn) || qn <= qo + kMargin) return false;
+        const std::int32_t region = region_[old.front()];
         for (std::int32_t t : old) kill(std::size_t(t));
         for (const Tet& x : fresh) add(x, region);
         return true;
@@ -356,6 +431,7 @@ private:
     std::size_t fixed_;
     double target_;
     std::vector<Tet> tets_;
+    std::vector<double> qual_; ///< quality() of each tet, kept current
     std::vector<std::int32_t> region_;
     std::vector<char> alive_;
     std::vector<std::vector<std::int32_t>> star_;
@@ -363,21 +439,7 @@ private:
 
 } // namespace
 
-double min_dihedral_deg(const V3& a, const V3& b, const V3& c, const V3& d)
-{
-    const V3* p[4] = {&a, &b, &c, &d};
-    static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    double m = 180;
-    for (const auto& e : kEdges) {
-        const V3 ev = sub(*p[e[1]], *p[e[0]]);
-        const V3 n1 = cross(ev, sub(*p[e[2]], *p[e[0]]));
-        const V3 n2 = cross(ev, sub(*p[e[3]], *p[e[0]]));
-        const double den = norm(n1) * norm(n2);
-        if (!(den > 0)) return 0;
-        m = std::min(m, std::acos(std::clamp(dot(n1, n2) / den, -1.0, 1.0)) * 180.0 / kPi);
-    }
-    return m;
-}
+double min_dihedral_deg(const V3& a, const V3& b, const V3& c, const V3& d) { return degrees(quality(a, b, c, d)); }
 
 TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, const TetImprovementParams& params)
 {

@@ -13,9 +13,9 @@
 //   - edge collapse: such a vertex goes, its star re-filled as the cone from one of its
 //     neighbours (any vertex, M's included, which stays put), if every new tet is positively
 //     oriented and the worst angle grows;
-//   - 2-3 and 3-2 flips: two tets sharing a face, or three around an edge, all of one region,
-//     are replaced when every new tet is positively oriented, the union's volume is the same
-//     and the worst dihedral angle grows.
+//   - 2-3 flips and edge removal: two tets sharing a face, or the 3 to 7 tets around an edge
+//     (Shewchuk's edge removal; 3 is the 3-2 flip), all of one region, are replaced when every
+//     new tet is positively oriented and the worst dihedral angle grows.
 // Nothing changes a vertex of M, a triangle of M (its two sides are different regions, or it
 // bounds the mesh) or a region tag, so the inside region's boundary stays M exactly and its
 // volume stays the volume M encloses. Each pass visits the tets below the target angle in a
@@ -33,7 +33,8 @@ struct TetImprovementParams {
 
 struct TetImprovementStats {
     double min_dihedral_before_deg = 0;
-    std::size_t vertices_moved = 0, vertices_removed = 0, flips_23 = 0, flips_32 = 0;
+    std::size_t vertices_moved = 0, vertices_removed = 0, flips_23 = 0;
+    std::size_t edges_removed = 0; ///< edge removals (3-2 flips and rings of up to 7 tets)
     int passes = 0;
 };
 

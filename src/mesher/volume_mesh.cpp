@@ -13,6 +13,7 @@
 #include <CGAL/spatial_sort.h>
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 #include <unordered_map>
 
@@ -179,11 +180,13 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     // result does not depend on the thread count.
     canonical_order(mesh);
     if (params.improve) {
+        const auto t0 = std::chrono::steady_clock::now();
         const TetImprovementStats imp = improve_tets(mesh, surface.vertices.size(), TetImprovementParams());
         st.min_dihedral_deg_delaunay = imp.min_dihedral_before_deg;
         st.vertices_moved = imp.vertices_moved;
         st.vertices_removed = imp.vertices_removed;
-        st.flips = imp.flips_23 + imp.flips_32;
+        st.flips = imp.flips_23 + imp.edges_removed;
+        st.improvement_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     scope.check(95);
 
