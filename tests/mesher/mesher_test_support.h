@@ -23,24 +23,30 @@ struct MeshAndVerify {
     std::vector<int> genera; ///< of M, sorted
 };
 
+/// Meshes with \p mo (isovalue, inside and eps_voxels set) and verifies at the same settings.
+inline MeshAndVerify mesh_and_verify(const openvdb::FloatGrid& grid, const MeshOptions& mo)
+{
+    MeshAndVerify out;
+    out.mesh = mesh_isosurface(grid, mo);
+    VerifyOptions vo;
+    vo.isovalue = mo.isovalue;
+    vo.inside = mo.inside;
+    vo.eps_voxels = mo.eps_voxels;
+    out.report = verify_surface(grid, out.mesh.surface, vo);
+    for (const auto& c : out.mesh.stats.components) out.genera.push_back(c.genus);
+    std::sort(out.genera.begin(), out.genera.end());
+    return out;
+}
+
 inline MeshAndVerify mesh_and_verify(const openvdb::FloatGrid& grid, double iso, Inside inside, double eps_voxels,
                                      int threads = 0)
 {
-    MeshAndVerify out;
     MeshOptions mo;
     mo.isovalue = iso;
     mo.inside = inside;
     mo.eps_voxels = eps_voxels;
     mo.threads = threads;
-    out.mesh = mesh_isosurface(grid, mo);
-    VerifyOptions vo;
-    vo.isovalue = iso;
-    vo.inside = inside;
-    vo.eps_voxels = eps_voxels;
-    out.report = verify_surface(grid, out.mesh.surface, vo);
-    for (const auto& c : out.mesh.stats.components) out.genera.push_back(c.genus);
-    std::sort(out.genera.begin(), out.genera.end());
-    return out;
+    return mesh_and_verify(grid, mo);
 }
 
 inline std::vector<int> expected_genera(const minijson::Value& entry)

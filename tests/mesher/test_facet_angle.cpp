@@ -38,18 +38,11 @@ double smallest_angle_deg(const SurfaceMesh& m)
 
 testing::MeshAndVerify mesh_with_angle(const openvdb::FloatGrid& grid, Inside inside, double eps_voxels, double angle)
 {
-    testing::MeshAndVerify out;
     MeshOptions mo;
     mo.inside = inside;
     mo.eps_voxels = eps_voxels;
     mo.facet_angle_deg = angle;
-    out.mesh = mesh_isosurface(grid, mo);
-    VerifyOptions vo;
-    vo.inside = inside;
-    vo.eps_voxels = eps_voxels;
-    out.report = verify_surface(grid, out.mesh.surface, vo);
-    for (const auto& c : out.mesh.stats.components) out.genera.push_back(c.genus);
-    return out;
+    return testing::mesh_and_verify(grid, mo);
 }
 
 } // namespace
