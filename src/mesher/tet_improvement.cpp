@@ -1,5 +1,7 @@
 #include "mesher/tet_improvement.h"
 
+#include "mesher/tet_quality.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
@@ -27,10 +29,6 @@ int orient(const V3& a, const V3& b, const V3& c, const V3& d)
     return int(CGAL::orientation(P(a), P(b), P(c), P(d)));
 }
 
-double volume(const V3& a, const V3& b, const V3& c, const V3& d)
-{
-    return dot(sub(b, a), cross(sub(c, a), sub(d, a))) / 6.0;
-}
 
 /// Tet quality inside the improver: minus the largest cosine of the six dihedral angles, which
 /// grows with the smallest angle (no acos in the inner loops); -1 for a flat tet.
@@ -413,11 +411,11 @@ private:
         double vo = 0, vn = 0, qo = kBest, qn = kBest;
         for (std::int32_t t : old) {
             const Tet& x = tets_[t];
-            vo += volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
+            vo += signed_tet_volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
             qo = std::min(qo, q(std::size_t(t)));
         }
         for (const Tet& x : fresh) {
-            vn += volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
+            vn += signed_tet_volume(P(x[0]), P(x[1]), P(x[2]), P(x[3]));
             qn = std::min(qn, quality_of(x));
         }
         if (!same_volume(vo, vn) || qn <= qo + kMargin) return false;
