@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -32,11 +33,17 @@ bool project(const octree::SampleField::Reader& reader, const openvdb::math::Mat
 {
     const auto& field = reader.field();
     Vec3d x = field.world_to_index(w0);
+    // Newton's steps are short: most stay in the cell they start in, whose corners are kept.
+    openvdb::Coord cell(std::numeric_limits<int>::min());
+    octree::Trilinear f{};
     for (int it = 0; it < 30; ++it) {
         const openvdb::Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
-        double corner[8];
-        reader.cell_corners(c, corner);
-        const auto f = octree::Trilinear::from_corners(corner);
+        if (c != cell) {
+            double corner[8];
+            reader.cell_corners(c, corner);
+            f = octree::Trilinear::from_corners(corner);
+            cell = c;
+        }
         const Vec3d l = x - c.asVec3d();
         const double phi = f(l[0], l[1], l[2]);
         const Vec3d gw = to_index.transpose() * f.gradient(l[0], l[1], l[2]); // world gradient
@@ -71,6 +78,97 @@ bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec
     out = field.index_to_world(a + best * (b - a));
     return true;
 }
+
+/// M -> Sigma on one triangle, as a bound: d(x, Sigma) <= d(s, Sigma) + |x - s|, and every point of
+/// a triangle is within L / sqrt(3) of one of its corners (L: its longest edge). A sub-triangle
+/// passes when the largest bound at its corners plus L / sqrt(3) is at most `pass`; otherwise it
+/// is split in four at its edge midpoints, down to edges of `leaf`, where each corner must be
+/// within `limit` of Sigma. That is the rule of a barycentric sample grid of spacing `leaf`
+/// (pass = limit + leaf / sqrt(3) bounds the same distance) without projecting every grid
+/// sample: a triangle lying on Sigma within a few hundredths of eps passes after a dozen Newton
+/// projections instead of ~200.
+class TriangleToSurface {
+public:
+    TriangleToSurface(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,
+                      const openvdb::math::Mat3d& to_index, double step_cap, double limit, double leaf, double reach)
+        : reader_(reader), to_world_(to_world), to_index_(to_index), step_cap_(step_cap), limit_(limit), leaf_(leaf),
+          pass_(limit + leaf / std::sqrt(3.0)), reach_(reach)
+    {
+    }
+
+    /// True when triangle abc is within the bound of Sigma. \p p is a point of Sigma (the
+    /// facet's surface point), \p off how far each vertex may be from Sigma. On failure \p at is
+    /// a point of Sigma near the offending sample when one was found.
+    bool check(const Vec3d& a, const Vec3d& b, const Vec3d& c, const double off[3], const Vec3d& p,
+               std::optional<Vec3d>& at)
+    {
+        p_ = p;
+        normal_ = (b - a).cross(c - a);
+        at_ = &at;
+        Corner A{a, off[0], true}, B{b, off[1], true}, C{c, off[2], true};
+        return passes(A, B, C, 0);
+    }
+
+private:
+    struct Corner {
+        Vec3d s;
+        double d;             ///< d(s, Sigma) <= d
+        bool exact = false;   ///< d already includes the Newton projection
+        std::optional<Vec3d> q; ///< that projection
+    };
+
+    void tighten(Corner& x) const
+    {
+        if (x.exact) return;
+        x.exact = true;
+        Vec3d q;
+        if (project(reader_, to_world_, to_index_, step_cap_, x.s, q)) {
+            x.q = q;
+            x.d = std::min(x.d, (q - x.s).length());
+        }
+    }
+
+    Corner midpoint(const Corner& x, const Corner& y) const
+    {
+        Corner m{0.5 * (x.s + y.s), 0.0};
+        const double h = 0.5 * (x.s - y.s).length();
+        m.d = std::min({x.d + h, y.d + h, (m.s - p_).length()});
+        return m;
+    }
+
+    bool passes(Corner& A, Corner& B, Corner& C, int depth)
+    {
+        const double L = std::max({(B.s - A.s).length(), (C.s - B.s).length(), (A.s - C.s).length()});
+        const auto covered = [&] { return std::max({A.d, B.d, C.d}) + L / std::sqrt(3.0) <= pass_; };
+        if (covered()) return true;
+        if (L <= leaf_ || depth >= kMaxDepth) {
+            for (Corner* x : {&A, &B, &C}) {
+                if (x->d <= limit_) continue;
+                tighten(*x);
+                if (x->d <= limit_) continue;
+                Vec3d q;
+                if (x->q) *at_ = x->q;
+                else if (along_normal(reader_, x->s, normal_, reach_, q)) *at_ = q;
+                return false;
+            }
+            return true;
+        }
+        tighten(A);
+        tighten(B);
+        tighten(C);
+        if (covered()) return true;
+        Corner ab = midpoint(A, B), bc = midpoint(B, C), ca = midpoint(C, A);
+        return passes(A, ab, ca, depth + 1) && passes(ab, B, bc, depth + 1) && passes(ca, bc, C, depth + 1) &&
+               passes(ab, bc, ca, depth + 1);
+    }
+
+    static constexpr int kMaxDepth = 5; // 32 sub-edges per edge (the sample grid had at most 24)
+    const octree::SampleField::Reader& reader_;
+    const openvdb::math::Mat3d &to_world_, &to_index_;
+    double step_cap_, limit_, leaf_, pass_, reach_;
+    Vec3d p_, normal_;
+    std::optional<Vec3d>* at_ = nullptr;
+};
 
 const FacetKey& key_of(const FacetKey& k) { return k; }
 const FacetKey& key_of(const FacetCache::Entry* e) { return e->key; }
@@ -132,6 +230,7 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
         auto& reader = readers.local();
+        TriangleToSurface to_surface(reader, index_to_world_, world_to_index_, step_cap, limit, 0.25 * eps_, 2.0 * eps_);
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const auto* e = todo[i];
             const auto vs = facet_vertices(e->facet);
@@ -149,27 +248,8 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
                 bad[i] = 1;
                 continue;
             }
-            // M -> Sigma on a barycentric grid.
-            const double longest = std::max({(b - a).length(), (c - b).length(), (a - c).length()});
-            const int n = std::clamp(int(std::ceil(longest / (0.25 * eps_))), 1, 24);
-            for (int u = 0; u <= n && !bad[i]; ++u)
-                for (int v = 0; u + v <= n; ++v) {
-                    if ((u == 0 && v == 0) || (u == n && v == 0) || (u == 0 && v == n)) continue; // on Sigma
-                    const Vec3d s = a + (b - a) * (double(u) / n) + (c - a) * (double(v) / n);
-                    Vec3d q;
-                    // p and the vertices are on Sigma (snapped ones within off): each distance is an
-                    // upper bound, and near the corners it saves the projection.
-                    double d = std::min({(s - p).length(), (s - a).length() + off[0], (s - b).length() + off[1],
-                                         (s - c).length() + off[2]});
-                    const bool projected = d > limit && project(reader, index_to_world_, world_to_index_, step_cap, s, q);
-                    if (projected) d = std::min(d, (q - s).length());
-                    if (d > limit) {
-                        bad[i] = 1;
-                        if (projected) at[i] = q;
-                        else if (along_normal(reader, s, (b - a).cross(c - a), 2.0 * eps_, q)) at[i] = q;
-                        break;
-                    }
-                }
+            // M -> Sigma (TriangleToSurface above).
+            if (!to_surface.check(a, b, c, off, p, at[i])) bad[i] = 1;
         }
     });
     std::vector<Candidate> out;
@@ -253,6 +333,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
             Vec3d worst_at;
             bool any = false;
             std::vector<FacetKey> witness;
+            auto last = tris.cend();
             // Faces x = 0, 1; y = 0, 1; z = 0, 1 of the cell; on each, lines along the two other axes.
             for (int axis = 0; axis < 3; ++axis)
                 for (int side = 0; side < 2; ++side)
@@ -271,8 +352,22 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
                             const Vec3d l = p0 + (p1 - p0) * (v0 / (v0 - v1)); // F is linear here
                             const Vec3d w = field_.index_to_world(c.asVec3d() + l);
                             const KD::Point_3 q(w[0], w[1], w[2]);
+                            // d(q, M) <= d(q, T) for T in M: the triangle nearest to the previous
+                            // sample (eps/2 away along the crease) usually passes q too, without a
+                            // tree query; the tree is asked only otherwise.
+                            if (last != tris.cend()) {
+                                const KD::Triangle_3& t = *last;
+                                const Vec3d cl = geometry::closest_on_triangle(
+                                    w, Vec3d(t[0].x(), t[0].y(), t[0].z()), Vec3d(t[1].x(), t[1].y(), t[1].z()),
+                                    Vec3d(t[2].x(), t[2].y(), t[2].z()));
+                                if ((cl - w).length() <= limit) {
+                                    witness.push_back(restricted[std::size_t(last - tris.cbegin())]->key);
+                                    continue;
+                                }
+                            }
                             const auto cp = tree.closest_point_and_primitive(q);
                             const double d = std::sqrt(CGAL::squared_distance(q, cp.first));
+                            last = cp.second;
                             witness.push_back(restricted[std::size_t(cp.second - tris.cbegin())]->key);
                             if (d > worst) {
                                 worst = d;

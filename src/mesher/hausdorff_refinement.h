@@ -7,8 +7,11 @@
 // both one-sided distances are measured locally and any facet that exceeds them is refined by
 // inserting its surface point p (a point of Sigma: ordinary Delaunay refinement, after which the
 // closed ball checks run again):
-//  - M -> Sigma: the triangle is sampled on a barycentric grid with spacing <= eps/4 and each
-//    sample is Newton-projected onto Sigma; |s - projection| bounds d(s, Sigma) from above.
+//  - M -> Sigma: |s - projection| bounds d(s, Sigma) from above for a sample s Newton-projected
+//    onto Sigma. The triangle is split in four until each piece's corner bounds plus its
+//    covering radius stay under 0.7 eps + (eps/4)/sqrt(3), or its edges are eps/4 long and each
+//    corner must be within 0.7 eps (the bound of a barycentric sample grid of spacing eps/4,
+//    with a dozen projections per triangle instead of ~200).
 //  - Sigma -> M: p itself, the point of Sigma on the Voronoi edge, must lie within eps of its
 //    triangle or of a triangle sharing one of its edges.
 //  - Sigma -> M along the creases: where Sigma crosses a cell face it is only C0, and a ridge

@@ -279,7 +279,9 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                              cache.computed_last_update());
             if (rep.kind == Violation::None) {
                 // Loops inside Voronoi facets (CBP_VF, second clause): once the cheaper checks pass.
+                const auto tl = Clock::now();
                 rep.candidates = loops.scan(dt, field, max_cells_walk, crease.trim);
+                if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  loops %.2f ms\n", 1e3 * since(tl));
                 filter_candidates(rep.candidates, run.keep);
                 if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
             }
@@ -287,10 +289,14 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 std::vector<const FacetCache::Entry*> restricted;
                 for (const auto& e : cache.active())
                     if (e.crossings == 1) restricted.push_back(&e);
+                const auto th = Clock::now();
                 rep.candidates = hausdorff.violations(restricted);
+                if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  hausdorff %.2f ms\n", 1e3 * since(th));
                 filter_candidates(rep.candidates, run.keep);
                 if (rep.candidates.empty()) {
+                    const auto tc = Clock::now();
                     rep.candidates = hausdorff.crease_violations(restricted);
+                    if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  crease %.2f ms\n", 1e3 * since(tc));
                     filter_candidates(rep.candidates, run.keep);
                 }
                 if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
@@ -351,8 +357,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                  ? t_refine
                  : t_topology) += since(tr);
             if (std::getenv("ISODEL_TRACE"))
-                std::fprintf(stderr, "round %d: %zu inserted (+%zu cascade), %.2f ms\n", st.rounds, ins.inserted.size(),
-                             cascade, 1e3 * since(tr));
+                std::fprintf(stderr, "round %d: %s %zu inserted (+%zu cascade), %.2f ms\n", st.rounds,
+                             to_string(rep.kind), ins.inserted.size(), cascade, 1e3 * since(tr));
             if (st.n_geometry + st.n_topology > max_points) {
                 std::ostringstream os;
                 os << "refinement stopped by the point bound (" << max_points
