@@ -94,10 +94,10 @@ struct TetStats {
     std::size_t tets_below_10deg = 0;     ///< tets with a dihedral angle under 10 degrees
     std::vector<std::size_t> dihedral_histogram; ///< 18 bins of 10 degrees, 6 angles per tet
     /// Quality improvement (MeshOptions::improve_tets): the smallest dihedral angle of the
-    /// Delaunay tets before it, vertices moved, vertices removed (edge collapses) and flips
-    /// made (the figures above are after).
+    /// Delaunay tets before it, vertices moved, vertices removed (edge collapses), vertices
+    /// inserted (next to slivers of M) and flips made (the figures above are after).
     double min_dihedral_deg_delaunay = 0;
-    std::size_t vertices_moved = 0, vertices_removed = 0, flips = 0;
+    std::size_t vertices_moved = 0, vertices_removed = 0, vertices_inserted = 0, flips = 0;
     double improvement_seconds = 0; ///< part of MeshStats::seconds["tets"]
 };
 

@@ -15,7 +15,9 @@
 //     oriented and the worst angle grows;
 //   - 2-3 flips and edge removal: two tets sharing a face, or the 3 to 7 tets around an edge
 //     (Shewchuk's edge removal; 3 is the 3-2 flip), all of one region, are replaced when every
-//     new tet is positively oriented and the worst dihedral angle grows.
+//     new tet is positively oriented and the worst dihedral angle grows;
+//   - vertex insertion: a new vertex next to a tet still bad after all that (a sliver between
+//     triangles of M), its cavity re-filled as a cone, when the worst angle grows.
 // Nothing changes a vertex of M, a triangle of M (its two sides are different regions, or it
 // bounds the mesh) or a region tag, so the inside region's boundary stays M exactly and its
 // volume stays the volume M encloses. Each pass visits the tets below the target angle in a
@@ -28,13 +30,14 @@ namespace isodel::mesher {
 
 struct TetImprovementParams {
     double target_deg = 15.0;   ///< work on tets whose smallest dihedral angle is below this
-    int max_passes = 4;         ///< bound on the sweeps over the bad tets
+    int max_passes = 10;        ///< bound on the sweeps over the bad tets
 };
 
 struct TetImprovementStats {
     double min_dihedral_before_deg = 0;
     std::size_t vertices_moved = 0, vertices_removed = 0, flips_23 = 0;
     std::size_t edges_removed = 0; ///< edge removals (3-2 flips and rings of up to 7 tets)
+    std::size_t vertices_inserted = 0; ///< new vertices next to slivers of M (insert_vertex)
     int passes = 0;
 };
 

@@ -185,6 +185,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
         st.min_dihedral_deg_delaunay = imp.min_dihedral_before_deg;
         st.vertices_moved = imp.vertices_moved;
         st.vertices_removed = imp.vertices_removed;
+        st.vertices_inserted = imp.vertices_inserted;
         st.flips = imp.flips_23 + imp.edges_removed;
         st.improvement_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }

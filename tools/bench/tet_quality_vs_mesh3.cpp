@@ -64,7 +64,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void run(const std::string& file, double iso)
+void run(const std::string& file, double iso, double facet_angle)
 {
     const isodel::Volume vol = isodel::read_volume(file);
     const isodel::octree::SampleField field(vol.grid, iso, vol.default_inside);
@@ -77,6 +77,7 @@ void run(const std::string& file, double iso)
     mo.inside = vol.default_inside;
     mo.eps_voxels = 0.5;
     mo.tets = isodel::TetRegion::Inside;
+    mo.facet_angle_deg = facet_angle;
     const isodel::MeshResult r = isodel::mesh_isosurface(*vol.grid, mo);
     const double t_isodel = seconds_since(t0);
     double lo_i = 180, hi_i = 0;
@@ -131,17 +132,26 @@ void run(const std::string& file, double iso)
 int main(int argc, char** argv)
 {
     openvdb::initialize();
-    if (argc < 3 || argc % 2 == 0) {
-        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 FILE ISO [FILE ISO ...]\n");
+    // --facet-angle DEG: isodel refines M's triangles to that angle first (isodel mesh
+    // --facet-angle), as Mesh_3's facet_angle = 25 does for its own surface.
+    double facet_angle = 0;
+    int first = 1;
+    if (argc > 2 && std::string(argv[1]) == "--facet-angle") {
+        facet_angle = std::stod(argv[2]);
+        first = 3;
+    }
+    if (argc - first < 2 || (argc - first) % 2 != 0) {
+        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] FILE ISO [FILE ISO ...]\n");
         return 2;
     }
     // isodel: min_Del is the Delaunay tets' smallest angle, min_dih/max_dih after improvement
     // (src/mesher/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees.
+    std::printf("isodel facet angle: %s\n", facet_angle > 0 ? std::to_string(facet_angle).c_str() : "none");
     std::printf("%-34s %9s %9s %9s %9s %7s %7s | %9s %9s %9s %7s %7s\n", "volume (eps 0.5 voxel, inside)", "isodel",
                 "min_Del", "min_dih", "max_dih", "<10deg", "s", "Mesh_3", "min_dih", "max_dih", "<10deg", "s");
-    for (int i = 1; i + 1 < argc; i += 2) {
+    for (int i = first; i + 1 < argc; i += 2) {
         try {
-            run(argv[i], std::stod(argv[i + 1]));
+            run(argv[i], std::stod(argv[i + 1]), facet_angle);
         } catch (const std::exception& e) {
             std::printf("%-40s failed: %s\n", argv[i], e.what());
         }

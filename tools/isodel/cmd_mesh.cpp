@@ -128,7 +128,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                           << t.min_dihedral_deg_off_surface << " deg, radius-edge <= " << t.max_radius_edge_off_surface
                           << "\n  improvement: smallest dihedral angle " << t.min_dihedral_deg_delaunay
                           << " deg before (Delaunay), " << t.vertices_moved << " vertices moved, " << t.vertices_removed
-                          << " removed, " << t.flips
+                          << " removed, " << t.vertices_inserted << " inserted, " << t.flips
                           << " flips\n  dihedral histogram (10 deg bins):";
                 for (auto n : t.dihedral_histogram) std::cerr << ' ' << n;
                 std::cerr << "\n";
