@@ -93,6 +93,45 @@ double crease_distance(const SampleField::Reader& reader, Vec3d x, int axis, dou
     return gl > 0 ? std::abs(f(l[0], l[1], l[2])) / gl : INFINITY;
 }
 
+/// x (index space, near the grid plane (axis, coord)) is within r of a grid edge lying in that
+/// plane whose samples are both within tol of v and across which F turns back in both
+/// directions (see CreaseTolerance::critical_edge).
+bool near_critical_edge(const SampleField::Reader& reader, const Vec3d& x, int axis, double coord, double r, double tol)
+{
+    for (int k = 0; k < 3; ++k) {
+        if (k == axis) continue;
+        const double line = std::round(x[k]);
+        if (std::abs(x[k] - line) >= r) continue;
+        const int m = 3 - axis - k;
+        Coord a;
+        a[axis] = int(std::lround(coord));
+        a[k] = int(line);
+        a[m] = int(std::floor(x[m]));
+        Coord b = a;
+        b[m] += 1;
+        const double fa = reader.phi(a), fb = reader.phi(b);
+        if (!(std::abs(fa) < tol && std::abs(fb) < tol)) continue;
+        // Only where F turns in both directions across the edge (saddle, needle or slot around
+        // it): a single ridge is an ordinary fin.
+        const double tt = (fa >= 0) != (fb >= 0) ? fa / (fa - fb) : 0.5;
+        int turning = 0;
+        for (const int dir : {axis, k}) {
+            bool side[2], near = false;
+            for (int sgn = 0; sgn < 2; ++sgn) {
+                Coord a2 = a, b2 = b;
+                a2[dir] += sgn ? 1 : -1;
+                b2[dir] += sgn ? 1 : -1;
+                const double f = (1 - tt) * reader.phi(a2) + tt * reader.phi(b2);
+                side[sgn] = f >= 0;
+                near |= std::abs(f) < tol; // could turn either way
+            }
+            turning += side[0] == side[1] || near;
+        }
+        if (turning == 2) return true;
+    }
+    return false;
+}
+
 /// Drops consecutive crossing pairs that are the two sheets of a crease's tip (see header).
 void cancel_crease_pairs(const SampleField::Reader& reader, std::vector<double>& t, const Vec3d& a,
                          const Vec3d& d, const CreaseTolerance& tol)
@@ -105,8 +144,11 @@ void cancel_crease_pairs(const SampleField::Reader& reader, std::vector<double>&
             const double sep = (ti - kept.back()) * len;
             int axis;
             double coord;
+            const double guard = 4 * tol.trim;
             if (plane_between(p, q, tol.separation, axis, coord) &&
                 (sep < tol.separation ||
+                 !(tol.critical_edge > 0 && (near_critical_edge(reader, p, axis, coord, guard, tol.critical_edge) ||
+                                             near_critical_edge(reader, q, axis, coord, guard, tol.critical_edge))) &&
                  // Both within trim of the crease curve in 3D: near the plane and, projected
                  // onto it, near the curve.
                  (std::max(std::abs(p[axis] - coord), std::abs(q[axis] - coord)) < tol.trim &&

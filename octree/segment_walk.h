@@ -32,9 +32,18 @@ struct SegmentCrossings {
 /// off, which is isotopic to Sigma; `trim` (a fraction of eps) bounds how much of the tip goes,
 /// `separation` (1e-4 voxel) only acts on wedges sharper than separation / trim radians.
 /// Zero tolerances keep every crossing. All in index units.
+///
+/// Not next to a critical grid edge: where both samples of a grid edge lie within
+/// `critical_edge` of v and F turns back in both directions across the edge (a saddle, a needle
+/// or a slot of Sigma along it: the four trilinear patches around the edge meet there, e.g.
+/// cells/random_n16_s4), Sigma is not a wedge and cutting its thin parts changes its topology;
+/// pairs within 4 trims of such an edge are kept (the `separation` rule still applies). A side
+/// within `critical_edge` of v counts as turning either way. A single ridge across an edge near
+/// v is an ordinary fin and is cut as usual.
 struct CreaseTolerance {
     double separation = 0.0;
     double trim = 0.0;
+    double critical_edge = 0.0; ///< |phi| of both samples below this (0: no such guard)
 };
 
 /// \p a, \p b in index space. Segments longer than max_cells cells report overflow and no roots.
