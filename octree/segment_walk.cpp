@@ -147,12 +147,13 @@ void cancel_crease_pairs(const SampleField::Reader& reader, std::vector<double>&
             const double guard = 4 * tol.trim;
             if (plane_between(p, q, tol.separation, axis, coord) &&
                 (sep < tol.separation ||
-                 !(tol.critical_edge > 0 && (near_critical_edge(reader, p, axis, coord, guard, tol.critical_edge) ||
-                                             near_critical_edge(reader, q, axis, coord, guard, tol.critical_edge))) &&
                  // Both within trim of the crease curve in 3D: near the plane and, projected
-                 // onto it, near the curve.
+                 // onto it, near the curve; and not next to a critical grid edge (tested last:
+                 // it reads up to 20 samples).
                  (std::max(std::abs(p[axis] - coord), std::abs(q[axis] - coord)) < tol.trim &&
-                  std::max(crease_distance(reader, p, axis, coord), crease_distance(reader, q, axis, coord)) < tol.trim))) {
+                  std::max(crease_distance(reader, p, axis, coord), crease_distance(reader, q, axis, coord)) < tol.trim &&
+                  !(tol.critical_edge > 0 && (near_critical_edge(reader, p, axis, coord, guard, tol.critical_edge) ||
+                                              near_critical_edge(reader, q, axis, coord, guard, tol.critical_edge)))))) {
                 kept.pop_back();
                 continue;
             }

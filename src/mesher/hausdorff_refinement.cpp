@@ -86,7 +86,9 @@ bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec
 /// within `limit` of Sigma. That is the rule of a barycentric sample grid of spacing `leaf`
 /// (pass = limit + leaf / sqrt(3) bounds the same distance) without projecting every grid
 /// sample: a triangle lying on Sigma within a few hundredths of eps passes after a dozen Newton
-/// projections instead of ~200.
+/// projections instead of ~200. Splitting stops after kMaxDepth halvings: a sub-triangle still
+/// longer than `leaf` there must pass the covering bound itself, so every pass is certified by
+/// pass <= eps whatever the triangle's size.
 class TriangleToSurface {
 public:
     TriangleToSurface(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,
@@ -128,6 +130,14 @@ private:
         }
     }
 
+    /// A point of Sigma near the failing corner x, for the caller to insert instead of p.
+    void report(const Corner& x) const
+    {
+        Vec3d q;
+        if (x.q) *at_ = x.q;
+        else if (along_normal(reader_, x.s, normal_, reach_, q)) *at_ = q;
+    }
+
     Corner midpoint(const Corner& x, const Corner& y) const
     {
         Corner m{0.5 * (x.s + y.s), 0.0};
@@ -141,14 +151,12 @@ private:
         const double L = std::max({(B.s - A.s).length(), (C.s - B.s).length(), (A.s - C.s).length()});
         const auto covered = [&] { return std::max({A.d, B.d, C.d}) + L / std::sqrt(3.0) <= pass_; };
         if (covered()) return true;
-        if (L <= leaf_ || depth >= kMaxDepth) {
+        if (L <= leaf_) {
             for (Corner* x : {&A, &B, &C}) {
                 if (x->d <= limit_) continue;
                 tighten(*x);
                 if (x->d <= limit_) continue;
-                Vec3d q;
-                if (x->q) *at_ = x->q;
-                else if (along_normal(reader_, x->s, normal_, reach_, q)) *at_ = q;
+                report(*x);
                 return false;
             }
             return true;
@@ -157,6 +165,18 @@ private:
         tighten(B);
         tighten(C);
         if (covered()) return true;
+        if (depth >= kMaxDepth) {
+            // Edges still longer than `leaf` (a triangle over 32 leaves long): corners within
+            // `limit` would not bound the points between them, so only the covering bound
+            // passes; otherwise the triangle fails and its surface point p is inserted (or a
+            // point of Sigma near a corner that is itself too far).
+            for (const Corner* x : {&A, &B, &C})
+                if (x->d > limit_) {
+                    report(*x);
+                    break;
+                }
+            return false;
+        }
         Corner ab = midpoint(A, B), bc = midpoint(B, C), ca = midpoint(C, A);
         return passes(A, ab, ca, depth + 1) && passes(ab, B, bc, depth + 1) && passes(ca, bc, C, depth + 1) &&
                passes(ab, bc, ca, depth + 1);

@@ -455,7 +455,10 @@ private:
         m_.vertices.push_back(cand[best_i]);
         star_.emplace_back();
         for (Tet& x : best_cone) x[0] = v;
-        return replace(best_cavity, best_cone);
+        if (replace(best_cavity, best_cone)) return true;
+        m_.vertices.pop_back(); // the volume check refused the cone: no vertex without tets
+        star_.pop_back();
+        return false;
     }
 
     /// Grows the cavity of point \p x from tet \p t (see insert_vertex). On success \p cone
