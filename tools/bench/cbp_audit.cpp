@@ -245,9 +245,14 @@ int main(int argc, char** argv)
             for (int a = 0; a < s * s; ++a)
                 if (sign[std::size_t(a)] >= 0 && find_root(parent, a) == a && !touches[std::size_t(a)] &&
                     size[std::size_t(a)] >= 2) {
-                    if (++loops <= show)
-                        std::printf("  CBP_VF loop: island of %d samples, facet centre (%.5f %.5f %.5f), extent %.2e\n",
-                                    size[std::size_t(a)], centre[0], centre[1], centre[2], extent);
+                    if (++loops <= show) {
+                        // The dual Delaunay edge, in index space (a grid point has integer coordinates).
+                        const V3 ea = idx(e->first->vertex(e->second)->point()), eb = idx(e->first->vertex(e->third)->point());
+                        std::printf("  CBP_VF loop: island of %d samples (%s), facet centre (%.5f %.5f %.5f), extent %.2e,"
+                                    " dual edge (%.5f %.5f %.5f)-(%.5f %.5f %.5f)\n",
+                                    size[std::size_t(a)], sign[std::size_t(a)] ? "inside" : "outside", centre[0],
+                                    centre[1], centre[2], extent, ea[0], ea[1], ea[2], eb[0], eb[1], eb[2]);
+                    }
                     break;
                 }
         }
