@@ -82,6 +82,19 @@ inline bool shared_file_present(const std::string& path)
     return false;
 }
 
+/// A crop of literal samples: samples[z][y][x] at index origin + (x, y, z), every other sample -1
+/// (inside = above 0 closes every level set inside the box).
+template <int NZ, int NY, int NX>
+openvdb::FloatGrid::Ptr samples_in_box(const double (&samples)[NZ][NY][NX], openvdb::Coord origin)
+{
+    auto grid = openvdb::FloatGrid::create(-1.f);
+    auto acc = grid->getAccessor();
+    for (int z = 0; z < NZ; ++z)
+        for (int y = 0; y < NY; ++y)
+            for (int x = 0; x < NX; ++x) acc.setValueOn(origin.offsetBy(x, y, z), float(samples[z][y][x]));
+    return grid;
+}
+
 inline void require_certified(const openvdb::FloatGrid& grid, std::initializer_list<double> eps_voxels,
                               const std::vector<int>& genera)
 {

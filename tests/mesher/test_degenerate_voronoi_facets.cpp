@@ -11,34 +11,6 @@
 
 using namespace isodel;
 
-namespace {
-
-/// samples[z][y][x] at index (x0 + x, y0 + y, z0 + z); every other sample is -1.
-template <int NZ, int NY, int NX>
-openvdb::FloatGrid::Ptr crop(const double (&samples)[NZ][NY][NX], openvdb::Coord origin)
-{
-    auto grid = openvdb::FloatGrid::create(-1.f);
-    auto acc = grid->getAccessor();
-    for (int z = -1; z <= NZ; ++z)
-        for (int y = -1; y <= NY; ++y)
-            for (int x = -1; x <= NX; ++x) {
-                const bool core = x >= 0 && x < NX && y >= 0 && y < NY && z >= 0 && z < NZ;
-                acc.setValueOn(origin.offsetBy(x, y, z), core ? float(samples[z][y][x]) : -1.f);
-            }
-    return grid;
-}
-
-void require_verified(const openvdb::FloatGrid& grid, double eps, std::size_t components)
-{
-    const auto r = testing::mesh_and_verify(grid, 0.0, Inside::Above, eps);
-    INFO("eps " << eps << " voxel\n" << r.report.summary());
-    CHECK(r.report.reference.determined);
-    CHECK(r.report.reference.components.size() == components);
-    CHECK(r.report.topology_verdict == "pass");
-    CHECK(r.report.passed());
-}
-
-} // namespace
 
 TEST_CASE("a needle along a grid edge through a facet perpendicular to it is seen (quantized seed 910)",
           "[mesher][facet-loops]")
@@ -53,8 +25,7 @@ TEST_CASE("a needle along a grid edge through a facet perpendicular to it is see
         {{0.0, -1.0}, {-0.5, 0.5}},  // z = 3
         {{0.0, 0.0}, {0.0, -1.0}},   // z = 4
     };
-    const auto grid = crop(s, openvdb::Coord(1, 1, 2));
-    for (double eps : {0.5, 0.25}) require_verified(*grid, eps, 2);
+    testing::require_certified(*testing::samples_in_box(s, openvdb::Coord(1, 1, 2)), {0.5, 0.25}, {0, 0});
 }
 
 TEST_CASE("a neck through a face saddle at exactly v is seen across coincident Voronoi vertices (quantized seed 1275)",
@@ -72,6 +43,5 @@ TEST_CASE("a neck through a face saddle at exactly v is seen across coincident V
         {{-0.5, 0.5, 0.5}, {0.5, -0.5, 1.0}, {-0.5, -0.5, 0.0}, {-0.5, -0.5, 0.0}}, // z = 4
         {{0.5, -0.5, 1.0}, {-1.0, 0.0, -0.5}, {-0.5, 0.0, 1.0}, {-0.5, -0.5, 0.0}}, // z = 5
     };
-    const auto grid = crop(s, openvdb::Coord(3, 1, 1));
-    for (double eps : {0.5, 0.25}) require_verified(*grid, eps, 2);
+    testing::require_certified(*testing::samples_in_box(s, openvdb::Coord(3, 1, 1)), {0.5, 0.25}, {0, 3});
 }
