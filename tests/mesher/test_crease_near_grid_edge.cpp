@@ -50,3 +50,20 @@ TEST_CASE("crease cut: a critical grid edge with one neighbour within 1 % of v (
     // reference (verify) has one component of genus 7.
     testing::require_certified(*testing::random_volume(5, 25, false), {0.5, 0.25, 0.1}, {7});
 }
+
+TEST_CASE("crease cut: the critical-edge guard on a valley-and-ridge edge (property seed 719) [known defect]",
+          "[mesher][crease][!mayfail]")
+{
+    // Known defect of the guard above, kept as a reproducer ([!mayfail]). A 3 x 2 x 3 crop of the
+    // property test's random volume 719 (plain, n 5), -1 around: the edge (4,4,4)-(4,5,4) has
+    // samples -0.0041 and 0.0019, a valley of F along x and a ridge along z (the crop's padding),
+    // so the guard keeps every pair within 4 trims of it. Refinement there inserts ~9800 points
+    // and M has genus 5; Sigma is a sphere. Without the guard this crop and seed 719 verify (99
+    // and 1606 vertices) but random_n16_s4 of ../shared/data does not.
+    const double s[3][2][3] = {
+        {{-0.636284, 0.045230, 0.621790}, {0.332669, -0.568727, -0.362615}}, // z = 2: y = 4, y = 5
+        {{0.848561, -0.406787, 0.398569}, {-0.277379, -0.867663, 0.927309}},  // z = 3
+        {{0.307809, -0.004072, -0.178860}, {0.596089, 0.001850, 0.574702}},   // z = 4
+    };
+    testing::require_certified(*testing::samples_in_box(s, openvdb::Coord(3, 4, 2)), {0.5}, {0});
+}
