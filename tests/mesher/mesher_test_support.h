@@ -70,8 +70,6 @@ inline Inside inside_of(const minijson::Value& entry)
     return entry["inside"].as_string() == "below" ? Inside::Below : Inside::Above;
 }
 
-/// Meshes \p grid at v = 0 (inside above) at each eps and requires a certified mesh (determined
-/// reference, every check passed) whose sorted genera are \p genera.
 /// Whether \p path (a file of ../shared/data) exists; if not, the test says so and counts as
 /// skipped: `if (!testing::shared_file_present(path)) return;`.
 inline bool shared_file_present(const std::string& path)
@@ -95,6 +93,8 @@ openvdb::FloatGrid::Ptr samples_in_box(const double (&samples)[NZ][NY][NX], open
     return grid;
 }
 
+/// Meshes \p grid at v = 0 (inside above) at each eps and requires a certified mesh (determined
+/// reference, every check passed) whose sorted genera are \p genera.
 inline void require_certified(const openvdb::FloatGrid& grid, std::initializer_list<double> eps_voxels,
                               const std::vector<int>& genera)
 {

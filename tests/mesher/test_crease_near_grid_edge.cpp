@@ -51,7 +51,7 @@ TEST_CASE("crease cut: a critical grid edge with one neighbour within 1 % of v (
     testing::require_certified(*testing::random_volume(5, 25, false), {0.5, 0.25, 0.1}, {7});
 }
 
-TEST_CASE("crease cut: the critical-edge guard on a valley-and-ridge edge (property seed 719) [known defect]",
+TEST_CASE("crease cut: Sigma next to a valley-and-ridge grid edge keeps its topology (property seed 719)",
           "[mesher][crease][!mayfail]")
 {
     // Known defect of the guard above, kept as a reproducer ([!mayfail]). A 3 x 2 x 3 crop of the
