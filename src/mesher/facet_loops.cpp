@@ -22,27 +22,41 @@ struct EdgeJob {
     std::uint32_t a, b; // vertex ids, a < b
 };
 
-/// q strictly inside the convex polygon P (coplanar, normal N from the polygon's own order).
-bool strictly_inside(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& q)
-{
-    // Cospherical sites give Voronoi vertices that coincide up to rounding: an edge 1e-16 long
-    // has no direction, and the sign it gives is noise. (Quantized property seed 1275: such an
-    // edge hid the neck through a face saddle at exactly v, and M lost a handle.)
-    double longest = 0;
-    for (std::size_t i = 0; i < P.size(); ++i) longest = std::max(longest, (P[(i + 1) % P.size()] - P[i]).lengthSqr());
-    for (std::size_t i = 0; i < P.size(); ++i) {
-        const Vec3d e = P[(i + 1) % P.size()] - P[i];
-        if (e.lengthSqr() <= 1e-20 * longest) continue; // coincident Voronoi vertices
-        if (e.cross(q - P[i]).dot(N) <= 0) return false;
+/// A Voronoi facet: its vertices in order, the normal from that order, and the squared length
+/// below which an edge is rounding noise. Cospherical sites give Voronoi vertices that coincide
+/// up to rounding: an edge 1e-16 long has no direction, and the sign it gives is noise.
+/// (Quantized property seed 1275: such an edge hid the neck through a face saddle at exactly v,
+/// and M lost a handle.)
+struct Polygon {
+    const std::vector<Vec3d>& P;
+    Vec3d N;
+    double noise_edge2;
+
+    Polygon(const std::vector<Vec3d>& points, const Vec3d& normal) : P(points), N(normal), noise_edge2(0)
+    {
+        for (std::size_t i = 0; i < P.size(); ++i)
+            noise_edge2 = std::max(noise_edge2, (P[(i + 1) % P.size()] - P[i]).lengthSqr());
+        noise_edge2 *= 1e-20;
     }
-    return true;
-}
+
+    /// q (on the facet's plane) strictly inside the convex polygon.
+    bool strictly_inside(const Vec3d& q) const
+    {
+        for (std::size_t i = 0; i < P.size(); ++i) {
+            const Vec3d e = P[(i + 1) % P.size()] - P[i];
+            if (e.lengthSqr() <= noise_edge2) continue; // coincident Voronoi vertices
+            if (e.cross(q - P[i]).dot(N) <= 0) return false;
+        }
+        return true;
+    }
+};
 
 /// Points where the facet's plane meets grid edges inside the facet, with phi there.
 template <class Visit>
-void grid_edge_points(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& lo, const Vec3d& hi,
-                      Visit&& visit)
+void grid_edge_points(const Polygon& poly, const Vec3d& lo, const Vec3d& hi, Visit&& visit)
 {
+    const auto& P = poly.P;
+    const Vec3d& N = poly.N;
     const double c = N.dot(P[0]);
     for (int d = 0; d < 3; ++d) {
         const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
@@ -54,7 +68,7 @@ void grid_edge_points(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& 
                 q[e2] = v;
                 q[d] = (c - N[e1] * u - N[e2] * v) / N[d];
                 if (q[d] < lo[d] || q[d] > hi[d]) continue;
-                if (strictly_inside(P, N, q)) visit(d, q);
+                if (poly.strictly_inside(q)) visit(d, q);
             }
     }
 }
@@ -64,9 +78,11 @@ void grid_edge_points(const std::vector<Vec3d>& P, const Vec3d& N, const Vec3d& 
 /// values give it exactly. A tube of Sigma lying in a grid face (e.g. two blobs joined at a face
 /// saddle) has the extremum of its cross-section there, not on a grid edge.
 template <class Visit>
-void grid_face_extrema(const octree::SampleField::Reader& reader, const std::vector<Vec3d>& P, const Vec3d& N,
-                       const Vec3d& lo, const Vec3d& hi, Visit&& visit)
+void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon& poly, const Vec3d& lo,
+                       const Vec3d& hi, Visit&& visit)
 {
+    const auto& P = poly.P;
+    const Vec3d& N = poly.N;
     const double c = N.dot(P[0]);
     for (int d = 0; d < 3; ++d) {
         const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
@@ -114,7 +130,7 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const std::vec
                 const double x = -beta / (2 * alpha);
                 if (!(std::abs(x) < h)) continue;
                 const Vec3d q = pm + x * D;
-                if (strictly_inside(P, N, q)) visit(q);
+                if (poly.strictly_inside(q)) visit(q);
             }
         }
     }
@@ -182,6 +198,7 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
                                                std::abs(hi[1]), std::abs(hi[2])}));
     lo -= Vec3d(pad);
     hi += Vec3d(pad);
+    const Polygon polygon(P, N);
 
     // Is q cut off from the boundary part of its own sign? With one boundary sign: iff q has the
     // other sign. With an arc: when no straight path in the facet leads from q to a Voronoi
@@ -199,7 +216,7 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
     // The deepest point of an island.
     std::optional<Vec3d> witness;
     double depth = 0;
-    grid_edge_points(P, N, lo, hi, [&](int axis, const Vec3d& q) {
+    grid_edge_points(polygon, lo, hi, [&](int axis, const Vec3d& q) {
         const double phi = octree::phi_at(reader, q);
         const bool q_inside = phi >= 0;
         if (std::abs(phi) <= depth) return;
@@ -219,7 +236,7 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
         depth = std::abs(phi);
         witness = q;
     });
-    grid_face_extrema(reader, P, N, lo, hi, [&](const Vec3d& q) {
+    grid_face_extrema(reader, polygon, lo, hi, [&](const Vec3d& q) {
         const double phi = octree::phi_at(reader, q);
         if (std::abs(phi) <= depth || !island(q, phi >= 0)) return;
         depth = std::abs(phi);
