@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 namespace isodel::mesher {
 namespace {
@@ -83,9 +84,8 @@ std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Ent
     return out;
 }
 
-ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps, const CandidateFilter& keep)
+ViolationReport ViolationFinder::find(FacetCache& cache, double eps, const CandidateFilter& keep)
 {
-    (void)dt;
     ViolationReport rep;
     const auto& active = cache.active();
 
@@ -106,122 +106,121 @@ ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, dou
         return rep;
     }
 
-    std::vector<const FacetCache::Entry*> restricted;
-    for (const auto& e : active)
-        if (e.crossings == 1) restricted.push_back(&e);
-    rep.restricted_facets = restricted.size();
-
     // Facets with a grid vertex: M's vertices must be samples of Sigma.
-    for (const auto* e : restricted)
-        if (!e->all_on_surface) rep.candidates.push_back(candidate_of(*e, PointKind::Topology));
+    for (const auto& e : active)
+        if (e.crossings == 1) {
+            ++rep.restricted_facets;
+            if (!e.all_on_surface) rep.candidates.push_back(candidate_of(e, PointKind::Topology));
+        }
     filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) {
         rep.kind = Violation::GridVertex;
         return rep;
     }
 
-    // CBP_VF and CBP_VC from one pass over the restricted facets around each vertex. Vertex ids
-    // are dense, so a counting sort groups them in O(n) (a comparison sort of the 3n incidences
-    // took a third of the run time); within a vertex, facets stay in key order.
-    std::uint32_t max_id = 0;
-    for (const auto* e : restricted) max_id = std::max(max_id, e->key.v[2]);
-    std::vector<std::uint32_t> first(restricted.empty() ? 1 : std::size_t(max_id) + 2, 0);
-    for (const auto* e : restricted)
-        for (int j = 0; j < 3; ++j) ++first[e->key.v[j] + 1];
-    for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
-    std::vector<std::uint32_t> around(restricted.size() * 3);
-    {
-        std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-        for (std::size_t i = 0; i < restricted.size(); ++i)
-            for (int j = 0; j < 3; ++j) around[fill[restricted[i]->key.v[j]]++] = std::uint32_t(i);
-    }
-    auto point_of = [&](std::uint32_t facet, std::uint32_t id) {
-        for (const auto& v : facet_vertices(restricted[facet]->facet))
-            if (v->info().id == id) return v->point();
-        return Point();
-    };
-    std::vector<std::size_t> bad_edge_facets, bad_vertex_facets;
-    std::vector<int> parent;
-    std::vector<std::pair<std::uint32_t, int>> spokes;
-    for (std::uint32_t p = 0; p + 1 < first.size(); ++p) {
-        const std::uint32_t* fs = around.data() + first[p];
-        const std::size_t n = first[p + 1] - first[p];
-        if (n == 0) continue;
-        spokes.clear();
-        for (std::size_t m = 0; m < n; ++m) {
-            const FacetKey& k = restricted[fs[m]]->key;
-            for (int q = 0; q < 3; ++q)
-                if (k.v[q] != p) spokes.push_back({k.v[q], int(m)});
-        }
-        std::sort(spokes.begin(), spokes.end());
-        // CBP_VF (Section 4.3, no interior loops): the Voronoi facet dual to edge (p, w) meets
-        // Sigma in one arc iff exactly two of its boundary Voronoi edges cross Sigma; otherwise
-        // insert the surface point farthest from the edge. Each edge is judged at p < w.
-        for (std::size_t s = 0; s < spokes.size();) {
-            std::size_t t = s;
-            while (t < spokes.size() && spokes[t].first == spokes[s].first) ++t;
-            const std::uint32_t w = spokes[s].first;
-            if (w > p && t - s != 2) {
-                const std::uint32_t f0 = fs[spokes[s].second];
-                const K::Segment_3 seg(point_of(f0, p), point_of(f0, w));
-                std::size_t best = f0;
-                double bd = -1;
-                for (std::size_t m = s; m < t; ++m) {
-                    const std::uint32_t f = fs[spokes[m].second];
-                    const double d = CGAL::squared_distance(restricted[f]->record->surface_point, seg);
-                    if (d > bd) {
-                        bd = d;
-                        best = f;
-                    }
-                }
-                bad_edge_facets.push_back(best);
-            }
-            s = t;
-        }
-        if (!bad_edge_facets.empty()) continue; // CBP_VF first: CBP_VC is not looked at then
-        // CBP_VC: with every Voronoi edge and facet a closed ball, Vor(p) meets Sigma in a disk
-        // iff the boundary of Vor(p) n Sigma is one curve (Theorem 4 rules out components inside
-        // a cell, Theorem 5 positive genus on cubic grids): the restricted facets around p form
-        // one cycle. Union facets that share an edge (p, w).
-        parent.resize(n);
-        std::iota(parent.begin(), parent.end(), 0);
-        for (std::size_t s = 1; s < spokes.size(); ++s)
-            if (spokes[s].first == spokes[s - 1].first)
-                parent[find_root(parent, spokes[s].second)] = find_root(parent, spokes[s - 1].second);
-        int roots = 0;
-        for (std::size_t m = 0; m < n; ++m) roots += (find_root(parent, int(m)) == int(m));
-        if (roots > 1) {
-            // Insert the surface point farthest from p.
-            const Point pp = point_of(fs[0], p);
-            std::size_t best = fs[0];
-            double bd = -1;
-            for (std::size_t m = 0; m < n; ++m) {
-                const double d = CGAL::squared_distance(restricted[fs[m]]->record->surface_point, pp);
-                if (d > bd) {
-                    bd = d;
-                    best = fs[m];
-                }
-            }
-            bad_vertex_facets.push_back(best);
-        }
-    }
-    for (auto* bad : {&bad_edge_facets, &bad_vertex_facets}) {
-        if (bad->empty()) continue;
-        std::sort(bad->begin(), bad->end());
-        bad->erase(std::unique(bad->begin(), bad->end()), bad->end());
-        for (std::size_t i : *bad) rep.candidates.push_back(candidate_of(*restricted[i], PointKind::Topology));
+    // CBP_VF, then CBP_VC: bring the verdicts of the vertices whose star changed up to date.
+    for (const std::uint32_t p : cache.take_touched_vertices()) examine(cache, p);
+    const auto by_origin = [](const Candidate& a, const Candidate& b) { return a.origin < b.origin; };
+    const auto same_origin = [](const Candidate& a, const Candidate& b) { return a.origin == b.origin; };
+    for (const auto& [ids, bad, kind] :
+         {std::tuple(&edge_bad_ids_, &edge_bad_, Violation::VoronoiFacet),
+          std::tuple(&link_bad_ids_, &link_bad_, Violation::VoronoiCell)}) {
+        for (const std::uint32_t p : *ids) rep.candidates.insert(rep.candidates.end(), (*bad)[p].begin(), (*bad)[p].end());
+        // One candidate per facet, in key order (a facet can be the worst of several edges).
+        std::sort(rep.candidates.begin(), rep.candidates.end(), by_origin);
+        rep.candidates.erase(std::unique(rep.candidates.begin(), rep.candidates.end(), same_origin), rep.candidates.end());
         filter_candidates(rep.candidates, keep);
-        if (rep.candidates.empty()) continue;
-        rep.kind = bad == &bad_edge_facets ? Violation::VoronoiFacet : Violation::VoronoiCell;
-        return rep;
+        if (!rep.candidates.empty()) {
+            rep.kind = kind;
+            return rep;
+        }
     }
 
     // Step 5: geometric refinement.
-    for (const auto* e : restricted)
-        if (e->record->distance > eps) rep.candidates.push_back(candidate_of(*e, PointKind::Geometry));
+    for (const auto& e : active)
+        if (e.crossings == 1 && e.record->distance > eps) rep.candidates.push_back(candidate_of(e, PointKind::Geometry));
     filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) rep.kind = Violation::Epsilon;
     return rep;
+}
+
+void ViolationFinder::examine(const FacetCache& cache, std::uint32_t p)
+{
+    if (edge_bad_.size() <= p) {
+        edge_bad_.resize(std::size_t(p) + 1);
+        link_bad_.resize(std::size_t(p) + 1);
+    }
+    auto& edge_bad = edge_bad_[p];
+    auto& link_bad = link_bad_[p];
+    edge_bad.clear();
+    link_bad.clear();
+    const auto& fs = cache.restricted_star(p); // sorted by key
+    const std::size_t n = fs.size();
+    auto candidate = [&](std::size_t m) {
+        double d = INFINITY;
+        for (const std::uint32_t id : fs[m].key.v)
+            d = std::min(d, std::sqrt(CGAL::squared_distance(fs[m].surface_point, cache.vertex_point(id))));
+        return Candidate{fs[m].surface_point, PointKind::Topology, d, fs[m].key};
+    };
+    spokes_.clear();
+    for (std::size_t m = 0; m < n; ++m)
+        for (const std::uint32_t w : fs[m].key.v)
+            if (w != p) spokes_.push_back({w, int(m)});
+    std::sort(spokes_.begin(), spokes_.end());
+    // CBP_VF (Section 4.3, no interior loops): the Voronoi facet dual to edge (p, w) meets
+    // Sigma in one arc iff exactly two of its boundary Voronoi edges cross Sigma; otherwise
+    // insert the surface point farthest from the edge. Each edge is judged at p < w.
+    for (std::size_t s = 0; s < spokes_.size();) {
+        std::size_t t = s;
+        while (t < spokes_.size() && spokes_[t].first == spokes_[s].first) ++t;
+        const std::uint32_t w = spokes_[s].first;
+        if (w > p && t - s != 2) {
+            const K::Segment_3 seg(cache.vertex_point(p), cache.vertex_point(w));
+            std::size_t best = std::size_t(spokes_[s].second);
+            double bd = -1;
+            for (std::size_t m = s; m < t; ++m) {
+                const double d = CGAL::squared_distance(fs[spokes_[m].second].surface_point, seg);
+                if (d > bd) {
+                    bd = d;
+                    best = std::size_t(spokes_[m].second);
+                }
+            }
+            edge_bad.push_back(candidate(best));
+        }
+        s = t;
+    }
+    // CBP_VC: with every Voronoi edge and facet a closed ball, Vor(p) meets Sigma in a disk
+    // iff the boundary of Vor(p) n Sigma is one curve (Theorem 4 rules out components inside
+    // a cell, Theorem 5 positive genus on cubic grids): the restricted facets around p form
+    // one cycle. Union facets that share an edge (p, w). (Read only when no vertex has a
+    // CBP_VF violation, as the paper orders the checks.)
+    if (n > 0) {
+        parent_.resize(n);
+        std::iota(parent_.begin(), parent_.end(), 0);
+        for (std::size_t s = 1; s < spokes_.size(); ++s)
+            if (spokes_[s].first == spokes_[s - 1].first)
+                parent_[find_root(parent_, spokes_[s].second)] = find_root(parent_, spokes_[s - 1].second);
+        int roots = 0;
+        for (std::size_t m = 0; m < n; ++m) roots += (find_root(parent_, int(m)) == int(m));
+        if (roots > 1) {
+            // Insert the surface point farthest from p.
+            const Point& pp = cache.vertex_point(p);
+            std::size_t best = 0;
+            double bd = -1;
+            for (std::size_t m = 0; m < n; ++m) {
+                const double d = CGAL::squared_distance(fs[m].surface_point, pp);
+                if (d > bd) {
+                    bd = d;
+                    best = m;
+                }
+            }
+            link_bad.push_back(candidate(best));
+        }
+    }
+    if (edge_bad.empty()) edge_bad_ids_.erase(p);
+    else edge_bad_ids_.insert(p);
+    if (link_bad.empty()) link_bad_ids_.erase(p);
+    else link_bad_ids_.insert(p);
 }
 
 } // namespace isodel::mesher

@@ -5,6 +5,7 @@
 #include "mesher/restricted_facets.h"
 
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -50,8 +51,25 @@ void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter
 
 /// Looks for violations in priority order and returns those of the first class present
 /// (a class whose candidates \p keep all rejects counts as absent).
-ViolationReport find_violations(const Delaunay& dt, const FacetCache& cache, double eps,
-                                const CandidateFilter& keep = {});
+///
+/// CBP_VF and CBP_VC are properties of a vertex's restricted star alone, so the finder keeps
+/// each vertex's verdict between calls and re-examines only the vertices whose star changed
+/// since (FacetCache::take_touched_vertices): a round costs O(changes) there instead of
+/// O(|restricted facets|). The answer is the one a scan of every vertex would give.
+class ViolationFinder {
+public:
+    ViolationReport find(FacetCache& cache, double eps, const CandidateFilter& keep = {});
+
+private:
+    void examine(const FacetCache& cache, std::uint32_t p);
+    // Per vertex id p: the candidate of every Delaunay edge (p, w > p) with other than 0 or 2
+    // restricted facets (CBP_VF), and of a restricted link that is not one cycle (CBP_VC).
+    std::vector<std::vector<Candidate>> edge_bad_;
+    std::vector<std::vector<Candidate>> link_bad_;
+    std::set<std::uint32_t> edge_bad_ids_, link_bad_ids_;
+    std::vector<std::pair<std::uint32_t, int>> spokes_;
+    std::vector<int> parent_;
+};
 
 /// Triangle quality (MeshOptions::facet_angle_deg): the surface point of every restricted facet
 /// whose smallest angle is under \p min_angle_deg (Delaunay refinement of the restricted

@@ -240,6 +240,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), snap_radius);
     hausdorff.set_filter(run.keep);
     FacetLoopScanner loops;
+    ViolationFinder violations;
     // Optional facet angle refinement: its own bound (E-point clusters make graded refinement).
     const std::size_t max_angle_points = 2 * st.e_points + 10000;
     double t_topology = 0, t_refine = 0;
@@ -270,7 +271,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 throw GuaranteeViolated(os.str());
             }
             cache.update(dt, field, max_cells_walk);
-            // Priority: voxel-bound holes, then Theorem 3 (grid cells), then find_violations'
+            // Priority: voxel-bound holes, then Theorem 3 (grid cells), then the ViolationFinder's
             // classes; the later checks run only when the earlier ones found nothing.
             const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
                                                [](const FacetCache::Entry& e) { return e.overflow; });
@@ -278,7 +279,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
             filter_candidates(rep.candidates, run.keep);
             if (!rep.candidates.empty()) rep.kind = Violation::GridCell;
-            else rep = find_violations(dt, cache, eps, run.keep);
+            else rep = violations.find(cache, eps, run.keep);
             if (std::getenv("ISODEL_TRACE"))
                 std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,

@@ -69,14 +69,22 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     const Cell_handle loc = dt.locate(p, lt, li, lj, hint);
     if (lt == Delaunay::VERTEX) return Vertex_handle();
     std::vector<Cell_handle> conflicts;
-    dt.find_conflicts(p, loc, CGAL::Emptyset_iterator(), std::back_inserter(conflicts));
-    for (const Cell_handle& c : conflicts)
-        for (int i = 0; i < 4; ++i)
-            if (!dt.is_infinite(c, i)) {
-                const FacetKey k = facet_key(Facet(c, i));
+    std::vector<Facet> boundary, internal;
+    dt.find_conflicts(p, loc, std::back_inserter(boundary), std::back_inserter(conflicts), std::back_inserter(internal));
+    // The facets the insertion replaces: each one once (an internal facet is shared by two
+    // conflict cells), and a boundary facet too, since its other cell is replaced.
+    for (const auto* facets : {&boundary, &internal})
+        for (const Facet& f : *facets)
+            if (!dt.is_infinite(f)) {
+                const FacetKey k = facet_key(f);
                 if (map_.erase(k)) changed_.push_back(k);
             }
-    const Vertex_handle v = dt.insert(p, lt, loc, li, lj);
+    // In dimension 3, Delaunay insertion is exactly "star the conflict region" (what
+    // dt.insert does after finding the same region again): reuse the region found above.
+    const Vertex_handle v = dt.dimension() == 3 && !boundary.empty()
+                                ? dt.insert_in_hole(p, conflicts.begin(), conflicts.end(), boundary.front().first,
+                                                    boundary.front().second)
+                                : dt.insert(p, lt, loc, li, lj);
     v->info() = info;
     inserted_.push_back(v);
     return v;
@@ -84,14 +92,19 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
 
 void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, int max_cells)
 {
-    std::vector<std::pair<Facet, FacetKey>> todo;
+    struct Todo {
+        Facet facet;
+        FacetKey key;
+        Stored* stored; // node pointers of an unordered_map stay valid
+    };
+    std::vector<Todo> todo;
     auto consider = [&](const Facet& f) {
         const auto vs = facet_vertices(f);
         if (!vs[0]->info().on_surface() && !vs[1]->info().on_surface() && !vs[2]->info().on_surface()) return;
         const FacetKey key = facet_key(f);
-        if (map_.count(key)) return;
-        map_.emplace(key, Stored{f, FacetRecord()}); // placeholder: dedupes within this update
-        todo.emplace_back(f, key);
+        // A placeholder until computed below; it also dedupes within this update.
+        const auto [it, fresh] = map_.try_emplace(key, Stored{f, FacetRecord()});
+        if (fresh) todo.push_back({f, key, &it->second});
     };
     if (!scanned_) {
         for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) consider(*it);
@@ -108,34 +121,32 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     }
     inserted_.clear();
     computed_ = todo.size();
-    std::vector<FacetRecord> fresh(todo.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers(
         [&] { return octree::SampleField::Reader(field); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           auto& reader = readers.local();
                           for (std::size_t i = r.begin(); i != r.end(); ++i)
-                              fresh[i] = compute_facet_record(dt, todo[i].first, reader, max_cells, crease_);
+                              todo[i].stored->record = compute_facet_record(dt, todo[i].facet, reader, max_cells, crease_);
                       });
-    for (std::size_t i = 0; i < todo.size(); ++i) map_.at(todo[i].second).record = fresh[i];
 
     // Keep the active list sorted without rescanning the map: drop the entries whose facet was
     // destroyed or recomputed, then merge in the recomputed active ones.
     const auto by_key = [](const Entry& a, const Entry& b) { return a.key < b.key; };
     std::vector<Entry> added;
-    for (const auto& [f, key] : todo) {
-        const Stored& st = map_.at(key);
+    for (const Todo& t : todo) {
+        const Stored& st = *t.stored;
         if (st.record.crossings > 0 || st.record.overflow) {
             const auto vs = facet_vertices(st.facet);
             const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
-            added.push_back({st.facet, key, &st.record, st.record.crossings, st.record.overflow, on});
+            added.push_back({st.facet, t.key, &st.record, st.record.crossings, st.record.overflow, on});
         }
     }
     std::sort(added.begin(), added.end(), by_key);
-    for (const auto& t : todo) changed_.push_back(t.second);
+    for (const Todo& t : todo) changed_.push_back(t.key);
+    std::sort(changed_.begin(), changed_.end());
     if (!changed_.empty() && !active_.empty()) {
         // Both sorted by key: one merge walk drops the changed entries.
-        std::sort(changed_.begin(), changed_.end());
         auto c = changed_.begin();
         active_.erase(std::remove_if(active_.begin(), active_.end(),
                                      [&](const Entry& e) {
@@ -144,12 +155,55 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                                      }),
                       active_.end());
     }
+    // The restricted stars follow the same changes: the changed keys leave, the recomputed
+    // restricted facets come back.
+    for (const FacetKey& k : changed_) unstar(k);
+    for (const Entry& e : added)
+        if (e.crossings == 1) star(e);
     changed_.clear();
     std::vector<Entry> merged;
     merged.reserve(active_.size() + added.size());
     std::merge(active_.begin(), active_.end(), added.begin(), added.end(), std::back_inserter(merged), by_key);
     active_.swap(merged);
     recent_.swap(added);
+}
+
+void FacetCache::unstar(const FacetKey& key)
+{
+    const auto by_key = [](const StarFacet& s, const FacetKey& k) { return s.key < k; };
+    for (const std::uint32_t id : key.v) {
+        if (id >= stars_.size()) continue;
+        auto& st = stars_[id];
+        const auto it = std::lower_bound(st.begin(), st.end(), key, by_key);
+        if (it == st.end() || !(it->key == key)) continue;
+        st.erase(it);
+        touched_.push_back(id);
+    }
+}
+
+void FacetCache::star(const Entry& e)
+{
+    const auto by_key = [](const StarFacet& s, const FacetKey& k) { return s.key < k; };
+    const std::uint32_t top = e.key.v[2]; // keys are sorted: the largest id
+    if (stars_.size() <= top) stars_.resize(std::size_t(top) + 1);
+    if (points_.size() <= top) points_.resize(std::max<std::size_t>(std::size_t(top) + 1, 2 * points_.size()));
+    for (const auto& v : facet_vertices(e.facet)) points_[v->info().id] = v->point();
+    for (const std::uint32_t id : e.key.v) {
+        auto& st = stars_[id];
+        const auto it = std::lower_bound(st.begin(), st.end(), e.key, by_key);
+        if (it != st.end() && it->key == e.key) continue;
+        st.insert(it, StarFacet{e.key, e.record->surface_point});
+        touched_.push_back(id);
+    }
+}
+
+std::vector<std::uint32_t> FacetCache::take_touched_vertices()
+{
+    std::vector<std::uint32_t> out;
+    out.swap(touched_);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
 }
 
 } // namespace isodel::mesher

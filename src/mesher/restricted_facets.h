@@ -47,6 +47,9 @@ public:
     /// removals, which invalidate the stored cell handles).
     void reset()
     {
+        for (std::uint32_t id = 0; id < stars_.size(); ++id)
+            if (!stars_[id].empty()) touched_.push_back(id);
+        stars_.clear();
         map_.clear();
         inserted_.clear();
         changed_.clear();
@@ -76,6 +79,24 @@ public:
     const std::vector<Entry>& recent() const { return recent_; }
     std::size_t computed_last_update() const { return computed_; }
 
+    /// A restricted facet (one crossing) as seen from one of its vertices.
+    struct StarFacet {
+        FacetKey key;
+        Point surface_point;
+    };
+    /// The restricted facets around the vertex with id \p id, sorted by key: the restricted
+    /// link the CBP_VF / CBP_VC checks read (closed_ball.h), kept up to date by update().
+    const std::vector<StarFacet>& restricted_star(std::uint32_t id) const
+    {
+        static const std::vector<StarFacet> none;
+        return id < stars_.size() ? stars_[id] : none;
+    }
+    /// Position of the vertex with id \p id (known for every vertex of a restricted facet).
+    const Point& vertex_point(std::uint32_t id) const { return points_[id]; }
+    /// Ids of the vertices whose restricted star changed since the last call, sorted, unique;
+    /// clears the list. The checks of closed_ball.h re-examine only these vertices.
+    std::vector<std::uint32_t> take_touched_vertices();
+
 private:
     struct Stored {
         Facet facet;
@@ -89,6 +110,13 @@ private:
     std::vector<Entry> active_;
     std::vector<Entry> recent_;
     std::size_t computed_ = 0;
+    // Restricted star of every vertex id (sorted by key), the vertices' positions, and the ids
+    // whose star changed since take_touched_vertices() was last called.
+    std::vector<std::vector<StarFacet>> stars_;
+    std::vector<Point> points_;
+    std::vector<std::uint32_t> touched_;
+    void unstar(const FacetKey& key);
+    void star(const Entry& e);
 };
 
 } // namespace isodel::mesher
