@@ -95,7 +95,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     struct Todo {
         Facet facet;
         FacetKey key;
-        Stored* stored; // node pointers of an unordered_map stay valid
+        Stored* stored; // FacetTable's values stay where they are
     };
     std::vector<Todo> todo;
     auto consider = [&](const Facet& f) {
@@ -103,8 +103,8 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
         if (!vs[0]->info().on_surface() && !vs[1]->info().on_surface() && !vs[2]->info().on_surface()) return;
         const FacetKey key = facet_key(f);
         // A placeholder until computed below; it also dedupes within this update.
-        const auto [it, fresh] = map_.try_emplace(key, Stored{f, FacetRecord()});
-        if (fresh) todo.push_back({f, key, &it->second});
+        const auto [stored, fresh] = map_.try_emplace(key, Stored{f, FacetRecord()});
+        if (fresh) todo.push_back({f, key, stored});
     };
     if (!scanned_) {
         for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) consider(*it);

@@ -6,10 +6,10 @@
 // protective layer traps in O(1) cells (Theorem 2). Facets among grid points only are skipped:
 // their Voronoi edges miss Sigma (Theorem 3).
 #include "mesher/delaunay.h"
+#include "mesher/facet_table.h"
 #include "octree/sample_field.h"
 #include "octree/segment_walk.h"
 
-#include <unordered_map>
 #include <vector>
 
 namespace isodel::mesher {
@@ -103,7 +103,7 @@ private:
         FacetRecord record;
     };
     octree::CreaseTolerance crease_;
-    std::unordered_map<FacetKey, Stored, FacetKeyHash> map_;
+    FacetTable<Stored> map_;
     std::vector<Vertex_handle> inserted_;
     std::vector<FacetKey> changed_; ///< keys erased by insert() since the last update
     bool scanned_ = false;
