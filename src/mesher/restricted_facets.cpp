@@ -130,8 +130,10 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                               todo[i].stored->record = compute_facet_record(dt, todo[i].facet, reader, max_cells, crease_);
                       });
 
-    // Keep the active list sorted without rescanning the map: drop the entries whose facet was
-    // destroyed or recomputed, then merge in the recomputed active ones.
+    // The active list changes by the changed keys (destroyed or recomputed facets) and the
+    // recomputed active facets. Merging them into the sorted list costs O(|active|), so it is
+    // done only when active() is next read (merge_pending): the cascade of CBP_VE steps in
+    // between reads recent() alone.
     const auto by_key = [](const Entry& a, const Entry& b) { return a.key < b.key; };
     std::vector<Entry> added;
     for (const Todo& t : todo) {
@@ -145,27 +147,48 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     std::sort(added.begin(), added.end(), by_key);
     for (const Todo& t : todo) changed_.push_back(t.key);
     std::sort(changed_.begin(), changed_.end());
-    if (!changed_.empty() && !active_.empty()) {
-        // Both sorted by key: one merge walk drops the changed entries.
-        auto c = changed_.begin();
-        active_.erase(std::remove_if(active_.begin(), active_.end(),
-                                     [&](const Entry& e) {
-                                         while (c != changed_.end() && *c < e.key) ++c;
-                                         return c != changed_.end() && !(e.key < *c);
-                                     }),
-                      active_.end());
-    }
+    changed_.erase(std::unique(changed_.begin(), changed_.end()), changed_.end());
+    // A pending entry whose key changed again is stale (its recomputation, if active, is in added).
+    if (!pending_added_.empty())
+        pending_added_.erase(std::remove_if(pending_added_.begin(), pending_added_.end(),
+                                            [&](const Entry& e) {
+                                                return std::binary_search(changed_.begin(), changed_.end(), e.key);
+                                            }),
+                             pending_added_.end());
+    pending_added_.insert(pending_added_.end(), added.begin(), added.end());
+    pending_changed_.insert(pending_changed_.end(), changed_.begin(), changed_.end());
     // The restricted stars follow the same changes: the changed keys leave, the recomputed
     // restricted facets come back.
     for (const FacetKey& k : changed_) unstar(k);
     for (const Entry& e : added)
         if (e.crossings == 1) star(e);
     changed_.clear();
-    std::vector<Entry> merged;
-    merged.reserve(active_.size() + added.size());
-    std::merge(active_.begin(), active_.end(), added.begin(), added.end(), std::back_inserter(merged), by_key);
-    active_.swap(merged);
     recent_.swap(added);
+}
+
+void FacetCache::merge_pending() const
+{
+    if (pending_changed_.empty() && pending_added_.empty()) return;
+    const auto by_key = [](const Entry& a, const Entry& b) { return a.key < b.key; };
+    std::sort(pending_changed_.begin(), pending_changed_.end());
+    if (!pending_changed_.empty() && !active_.empty()) {
+        // Both sorted by key: one merge walk drops the changed entries.
+        auto c = pending_changed_.begin();
+        active_.erase(std::remove_if(active_.begin(), active_.end(),
+                                     [&](const Entry& e) {
+                                         while (c != pending_changed_.end() && *c < e.key) ++c;
+                                         return c != pending_changed_.end() && !(e.key < *c);
+                                     }),
+                      active_.end());
+    }
+    std::sort(pending_added_.begin(), pending_added_.end(), by_key);
+    std::vector<Entry> merged;
+    merged.reserve(active_.size() + pending_added_.size());
+    std::merge(active_.begin(), active_.end(), pending_added_.begin(), pending_added_.end(),
+               std::back_inserter(merged), by_key);
+    active_.swap(merged);
+    pending_changed_.clear();
+    pending_added_.clear();
 }
 
 void FacetCache::unstar(const FacetKey& key)

@@ -54,6 +54,8 @@ public:
         inserted_.clear();
         changed_.clear();
         active_.clear();
+        pending_changed_.clear();
+        pending_added_.clear();
         recent_.clear();
         scanned_ = false;
     }
@@ -73,7 +75,11 @@ public:
         bool all_on_surface; ///< every vertex is an E/N point (kinds never change)
     };
     /// Facets whose Voronoi edge meets Sigma or overflowed, sorted by key.
-    const std::vector<Entry>& active() const { return active_; }
+    const std::vector<Entry>& active() const
+    {
+        merge_pending();
+        return active_;
+    }
     /// The active facets the last update() computed (new or changed since the update before),
     /// sorted by key: where the last insertions changed the restricted Voronoi diagram.
     const std::vector<Entry>& recent() const { return recent_; }
@@ -107,7 +113,12 @@ private:
     std::vector<Vertex_handle> inserted_;
     std::vector<FacetKey> changed_; ///< keys erased by insert() since the last update
     bool scanned_ = false;
-    std::vector<Entry> active_;
+    // active() merges the changes of the updates since it was last read (not thread-safe
+    // against concurrent updates, like everything here).
+    mutable std::vector<Entry> active_;
+    mutable std::vector<FacetKey> pending_changed_;
+    mutable std::vector<Entry> pending_added_;
+    void merge_pending() const;
     std::vector<Entry> recent_;
     std::size_t computed_ = 0;
     // Restricted star of every vertex id (sorted by key), the vertices' positions, and the ids
