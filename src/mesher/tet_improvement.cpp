@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 #include <vector>
 
@@ -51,6 +52,7 @@ double degrees(double q) { return std::acos(std::clamp(-q, -1.0, 1.0)) * 180.0 /
 constexpr double kBest = 2;     ///< above every quality
 constexpr double kInvalid = -3; ///< below every quality: an inverted tet
 constexpr double kMargin = 1e-12; ///< an improvement must beat the old quality by this much
+constexpr std::size_t kMaxSmoothStar = 256; ///< larger stars are not smoothed or collapsed (Improver::try_smooth)
 
 /// A flip may only replace tets by tets filling the same polytope. The orientation predicates
 /// decide that exactly; equal volumes are a second, floating-point, sanity check.
@@ -59,7 +61,9 @@ bool same_volume(double before, double after) { return std::abs(before - after) 
 class Improver {
 public:
     Improver(TetMesh& m, std::size_t surface_vertices, double target_deg)
-        : m_(m), fixed_(surface_vertices), target_(-std::cos(target_deg * kPi / 180.0)), star_(m.vertices.size())
+        : m_(m), fixed_(surface_vertices), target_(-std::cos(target_deg * kPi / 180.0)), star_(m.vertices.size()),
+          version_(m.vertices.size(), 0), smooth_failed_(m.vertices.size(), 0), free_at_(m.vertices.size(), 0),
+          free_(m.vertices.size(), 0)
     {
         for (std::size_t t = 0; t < m.tets.size(); ++t) add(m.tets[t], m.tet_region[t]);
     }
@@ -128,10 +132,21 @@ private:
         region_.push_back(region);
         alive_.push_back(1);
         for (std::int32_t v : t) star_[std::size_t(v)].push_back(id);
+        touch(t);
     }
+    /// A vertex's version changes whenever its star or the position of a vertex of its star
+    /// does: smooth() and free_star() depend on nothing else, so an answer computed at the
+    /// current version is still the answer (memoised below; a hub vertex next to a finely
+    /// sampled patch of M has thousands of tets and is asked for every bad tet around it).
+    void touch(const Tet& t)
+    {
+        for (std::int32_t v : t) ++version_[std::size_t(v)];
+    }
+
     void kill(std::size_t t)
     {
         alive_[t] = 0;
+        touch(tets_[t]);
         for (std::int32_t v : tets_[t]) {
             auto& s = star_[std::size_t(v)];
             s.erase(std::find(s.begin(), s.end(), std::int32_t(t)));
@@ -155,6 +170,15 @@ private:
     bool free_star(std::int32_t v) const
     {
         if (std::size_t(v) < fixed_) return false;
+        const std::size_t i = std::size_t(v);
+        if (free_at_[i] != version_[i] + 1) {
+            free_[i] = compute_free_star(v);
+            free_at_[i] = version_[i] + 1;
+        }
+        return free_[i];
+    }
+    bool compute_free_star(std::int32_t v) const
+    {
         const auto& s = star_[std::size_t(v)];
         if (s.size() < 4) return false;
         std::vector<std::pair<std::int32_t, std::int32_t>> link;
@@ -175,6 +199,20 @@ private:
     /// candidate position raises its star's worst angle.
     bool smooth(std::int32_t v)
     {
+        if (smooth_failed_[std::size_t(v)] == version_[std::size_t(v)] + 1) return false; // nothing changed since
+        if (!try_smooth(v)) {
+            smooth_failed_[std::size_t(v)] = version_[std::size_t(v)] + 1;
+            return false;
+        }
+        return true;
+    }
+    bool try_smooth(std::int32_t v)
+    {
+        // A hub (a grid point next to a finely sampled patch of M: up to thousands of tets)
+        // is not moved: one attempt costs O(star), it is asked again after every change
+        // around it, and raising the worst of so many tets by moving one point almost never
+        // succeeds.
+        if (star_[std::size_t(v)].size() > kMaxSmoothStar) return false;
         if (!free_star(v)) return false;
         const auto& s = star_[std::size_t(v)];
         std::vector<std::pair<std::int32_t, std::int32_t>> link;
@@ -248,7 +286,10 @@ private:
         }
         if (!best_x) return false;
         m_.vertices[std::size_t(v)] = *best_x;
-        for (std::int32_t t : s) qual_[std::size_t(t)] = quality_of(tets_[t]);
+        for (std::int32_t t : s) {
+            qual_[std::size_t(t)] = quality_of(tets_[t]);
+            touch(tets_[t]);
+        }
         return true;
     }
 
@@ -259,7 +300,9 @@ private:
     /// of the bad tet \p bad are tried: collapsing onto them is what removes it.
     bool collapse(std::int32_t v, const Tet bad)
     {
-        if (std::size_t(v) < fixed_ || !free_star(v)) return false;
+        // Hubs stay (see try_smooth): the cone over thousands of link triangles from one
+        // neighbour is never better, and each attempt is O(star).
+        if (std::size_t(v) < fixed_ || star_[std::size_t(v)].size() > kMaxSmoothStar || !free_star(v)) return false;
         const std::vector<std::int32_t> s = star_[std::size_t(v)];
         double current = kBest;
         for (std::int32_t t : s) current = std::min(current, q(std::size_t(t)));
@@ -454,10 +497,14 @@ private:
         const auto v = std::int32_t(m_.vertices.size());
         m_.vertices.push_back(cand[best_i]);
         star_.emplace_back();
+        for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->push_back(0);
+        free_.push_back(0);
         for (Tet& x : best_cone) x[0] = v;
         if (replace(best_cavity, best_cone)) return true;
         m_.vertices.pop_back(); // the volume check refused the cone: no vertex without tets
         star_.pop_back();
+        for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->pop_back();
+        free_.pop_back();
         return false;
     }
 
@@ -545,6 +592,12 @@ private:
     std::vector<std::int32_t> region_;
     std::vector<char> alive_;
     std::vector<std::vector<std::int32_t>> star_;
+    // Per vertex: version (touch()), the version + 1 at which smooth() last failed and at which
+    // free_star() was computed (0: never), and that free_star() value.
+    std::vector<std::uint32_t> version_;
+    std::vector<std::uint32_t> smooth_failed_;
+    mutable std::vector<std::uint32_t> free_at_;
+    mutable std::vector<char> free_;
 };
 
 } // namespace
