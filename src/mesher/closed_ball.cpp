@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
 #include <numeric>
 #include <tuple>
 
@@ -84,6 +87,26 @@ std::vector<Candidate> voronoi_edge_violations(const std::vector<FacetCache::Ent
     return out;
 }
 
+ViolationFinder::ViolationFinder() : self_check_(std::getenv("ISODEL_CHECK_INCREMENTAL") != nullptr) {}
+
+void ViolationFinder::check_kept_verdicts(const FacetCache& cache)
+{
+    const auto same = [](const std::vector<Candidate>& a, const std::vector<Candidate>& b) {
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Candidate& x, const Candidate& y) {
+                   return x.origin == y.origin && x.p == y.p && x.spacing == y.spacing;
+               });
+    };
+    const std::size_t n = std::max<std::size_t>(edge_bad_.size(), cache.vertex_id_bound());
+    for (std::uint32_t p = 0; p < n; ++p) {
+        const std::vector<Candidate> edge = p < edge_bad_.size() ? edge_bad_[p] : std::vector<Candidate>();
+        const std::vector<Candidate> link = p < link_bad_.size() ? link_bad_[p] : std::vector<Candidate>();
+        examine(cache, p);
+        if (!same(edge, edge_bad_[p]) || !same(link, link_bad_[p]))
+            throw std::logic_error("ViolationFinder: the kept CBP_VF/CBP_VC verdict of vertex " + std::to_string(p) +
+                                   " differs from a fresh examination (a star change was missed)");
+    }
+}
+
 ViolationReport ViolationFinder::find(FacetCache& cache, double eps, const CandidateFilter& keep)
 {
     ViolationReport rep;
@@ -120,6 +143,7 @@ ViolationReport ViolationFinder::find(FacetCache& cache, double eps, const Candi
 
     // CBP_VF, then CBP_VC: bring the verdicts of the vertices whose star changed up to date.
     for (const std::uint32_t p : cache.take_touched_vertices()) examine(cache, p);
+    if (self_check_) check_kept_verdicts(cache);
     const auto by_origin = [](const Candidate& a, const Candidate& b) { return a.origin < b.origin; };
     const auto same_origin = [](const Candidate& a, const Candidate& b) { return a.origin == b.origin; };
     for (const auto& [ids, bad, kind] :

@@ -58,10 +58,16 @@ void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter
 /// O(|restricted facets|). The answer is the one a scan of every vertex would give.
 class ViolationFinder {
 public:
+    /// With the environment variable ISODEL_CHECK_INCREMENTAL set, every find() also examines
+    /// every vertex from scratch and throws std::logic_error if a kept verdict differs (tests).
+    ViolationFinder();
+
     ViolationReport find(FacetCache& cache, double eps, const CandidateFilter& keep = {});
 
 private:
     void examine(const FacetCache& cache, std::uint32_t p);
+    void check_kept_verdicts(const FacetCache& cache);
+    bool self_check_ = false;
     // Per vertex id p: the candidate of every Delaunay edge (p, w > p) with other than 0 or 2
     // restricted facets (CBP_VF), and of a restricted link that is not one cycle (CBP_VC).
     std::vector<std::vector<Candidate>> edge_bad_;

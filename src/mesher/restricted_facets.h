@@ -97,6 +97,8 @@ public:
         static const std::vector<StarFacet> none;
         return id < stars_.size() ? stars_[id] : none;
     }
+    /// Every vertex id with a restricted star is below this.
+    std::size_t vertex_id_bound() const { return stars_.size(); }
     /// Position of the vertex with id \p id (known for every vertex of a restricted facet).
     const Point& vertex_point(std::uint32_t id) const { return points_[id]; }
     /// Ids of the vertices whose restricted star changed since the last call, sorted, unique;
