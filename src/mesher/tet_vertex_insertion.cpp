@@ -1,0 +1,96 @@
+// Tet improvement (tet_improvement.h): vertex insertion next to the slivers no other move
+// fixes, on the Improver's tets (tet_improver.h).
+#include "mesher/tet_improver.h"
+
+namespace isodel::mesher::tet_improver {
+
+bool Improver::insert_vertex(std::size_t t)
+{
+    const Tet T = tets_[t];
+    const std::int32_t region = region_[t];
+    std::vector<V3> cand;
+    for (int j = 0; j < 4; ++j) {
+        const V3 &a = P(T[(j + 1) & 3]), &b = P(T[(j + 2) & 3]), &c = P(T[(j + 3) & 3]);
+        const V3 fc{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
+        V3 nrm = cross(sub(b, a), sub(c, a));
+        const double nn = norm(nrm);
+        if (!(nn > 0)) continue;
+        if (dot(nrm, sub(P(T[j]), fc)) < 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
+        const double edge = (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c))) / 3;
+        const double h = std::sqrt(2.0 / 3.0) * edge / nn;
+        for (double f : {0.3, 0.6, 1.0}) cand.push_back({fc[0] + f * h * nrm[0], fc[1] + f * h * nrm[1], fc[2] + f * h * nrm[2]});
+    }
+    std::vector<std::int32_t> best_cavity;
+    std::vector<Tet> best_cone;
+    double best = q(t);
+    std::size_t best_i = cand.size();
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+        std::vector<std::int32_t> cavity;
+        std::vector<Tet> cone;
+        if (!cavity_for(t, region, cand[i], cavity, cone)) continue;
+        double old_q = kBest, new_q = kBest;
+        for (std::int32_t c : cavity) old_q = std::min(old_q, q(std::size_t(c)));
+        for (const Tet& x : cone) new_q = std::min(new_q, quality(x[0] < 0 ? cand[i] : P(x[0]), P(x[1]), P(x[2]), P(x[3])));
+        if (new_q > old_q + kMargin && new_q > best + kMargin) {
+            best = new_q;
+            best_i = i;
+            best_cavity = std::move(cavity);
+            best_cone = std::move(cone);
+        }
+    }
+    if (best_i == cand.size()) return false;
+    const auto v = std::int32_t(m_.vertices.size());
+    m_.vertices.push_back(cand[best_i]);
+    star_.emplace_back();
+    for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->push_back(0);
+    free_.push_back(0);
+    for (Tet& x : best_cone) x[0] = v;
+    if (replace(best_cavity, best_cone)) return true;
+    m_.vertices.pop_back(); // the volume check refused the cone: no vertex without tets
+    star_.pop_back();
+    for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->pop_back();
+    free_.pop_back();
+    return false;
+}
+
+bool Improver::cavity_for(std::size_t t, std::int32_t region, const V3& x, std::vector<std::int32_t>& cavity,
+                          std::vector<Tet>& cone) const
+{
+    constexpr std::size_t kMaxCavity = 24;
+    const auto in_cavity = [&](std::int32_t u) { return std::find(cavity.begin(), cavity.end(), u) != cavity.end(); };
+    // Tet C with x in place of C[j], rotated by an even permutation so x is in slot 0: it is
+    // positively oriented iff x is strictly on C[j]'s side of the face.
+    const auto coned = [&](const Tet& C, int j) {
+        static constexpr int kEven[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+        Tet n = C;
+        n[j] = -1;
+        return Tet{n[kEven[j][0]], n[kEven[j][1]], n[kEven[j][2]], n[kEven[j][3]]};
+    };
+    const auto sees = [&](const Tet& n) { return orient(x, P(n[1]), P(n[2]), P(n[3])) > 0; };
+    cavity.assign(1, std::int32_t(t));
+    // Faces are checked once: a face x sees stays seen, one it does not see makes the cavity
+    // take the tet across. Which faces end on the cavity's boundary is settled at the end.
+    std::vector<std::pair<std::int32_t, int>> queue;
+    for (int j = 0; j < 4; ++j) queue.emplace_back(std::int32_t(t), j);
+    while (!queue.empty()) {
+        const auto [c, j] = queue.back();
+        queue.pop_back();
+        const std::int32_t across = neighbour(c, j);
+        if (across >= 0 && in_cavity(across)) continue;
+        if (sees(coned(tets_[c], j))) continue;
+        if (across < 0 || region_[across] != region || cavity.size() >= kMaxCavity) return false;
+        cavity.push_back(across);
+        for (int k = 0; k < 4; ++k) queue.emplace_back(across, k);
+    }
+    cone.clear();
+    for (std::int32_t c : cavity)
+        for (int j = 0; j < 4; ++j) {
+            const std::int32_t across = neighbour(c, j);
+            if (across >= 0 && in_cavity(across)) continue;
+            cone.push_back(coned(tets_[c], j));
+            if (!sees(cone.back())) return false;
+        }
+    return true;
+}
+
+} // namespace isodel::mesher::tet_improver
