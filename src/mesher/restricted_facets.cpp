@@ -68,8 +68,11 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     int li, lj;
     const Cell_handle loc = dt.locate(p, lt, li, lj, hint);
     if (lt == Delaunay::VERTEX) return Vertex_handle();
-    std::vector<Cell_handle> conflicts;
-    std::vector<Facet> boundary, internal;
+    // Scratch buffers kept across calls: no allocation per inserted point.
+    auto& [conflicts, boundary, internal] = scratch_;
+    conflicts.clear();
+    boundary.clear();
+    internal.clear();
     dt.find_conflicts(p, loc, std::back_inserter(boundary), std::back_inserter(conflicts), std::back_inserter(internal));
     // The facets the insertion replaces: each one once (an internal facet is shared by two
     // conflict cells), and a boundary facet too, since its other cell is replaced.

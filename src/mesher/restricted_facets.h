@@ -113,6 +113,10 @@ private:
     octree::CreaseTolerance crease_;
     FacetTable<Stored> map_;
     std::vector<Vertex_handle> inserted_;
+    struct InsertScratch {
+        std::vector<Cell_handle> conflicts;
+        std::vector<Facet> boundary, internal;
+    } scratch_; ///< insert()'s conflict region
     std::vector<FacetKey> changed_; ///< keys erased by insert() since the last update
     bool scanned_ = false;
     // active() merges the changes of the updates since it was last read (not thread-safe

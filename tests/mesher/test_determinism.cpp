@@ -5,22 +5,10 @@
 
 #include "mesher_test_support.h"
 
-#include <random>
 
 using namespace isodel;
 
 namespace {
-
-openvdb::FloatGrid::Ptr random_volume(int n, unsigned seed)
-{
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> U(-1.0, 1.0);
-    return testing::make_grid(n + 2, 1.0, openvdb::Vec3d(0.0), [&](const openvdb::Vec3d& x) {
-        for (int a = 0; a < 3; ++a)
-            if (x[a] == 0 || x[a] == n + 1) return -1.0;
-        return U(rng);
-    });
-}
 
 void check_same(const openvdb::FloatGrid& grid, double eps_voxels)
 {
@@ -46,7 +34,7 @@ TEST_CASE("same mesh with 1 and 2 threads", "[mesher][determinism]")
 {
     for (unsigned seed : {3u, 11u, 19u}) {
         INFO("random volume seed " << seed);
-        check_same(*random_volume(6, seed), 0.25);
+        check_same(*testing::random_volume(6, seed, false), 0.25);
     }
     auto torus = testing::make_grid(32, 1.0, openvdb::Vec3d(0.0), [](const openvdb::Vec3d& x) {
         return testing::torus_f(x, openvdb::Vec3d(15.5, 15.3, 15.7), 8.0, 3.0);

@@ -9,22 +9,10 @@
 #include "mesher_test_support.h"
 
 #include <cstdlib>
-#include <random>
 
 using namespace isodel;
 
 namespace {
-
-openvdb::FloatGrid::Ptr random_volume(int n, unsigned seed)
-{
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> U(-1.0, 1.0);
-    return testing::make_grid(n + 2, 1.0, openvdb::Vec3d(0.0), [&](const openvdb::Vec3d& x) {
-        for (int a = 0; a < 3; ++a)
-            if (x[a] == 0 || x[a] == n + 1) return -1.0;
-        return U(rng);
-    });
-}
 
 struct SelfCheck {
     SelfCheck() { setenv("ISODEL_CHECK_INCREMENTAL", "1", 1); }
@@ -38,7 +26,7 @@ TEST_CASE("closed ball checks: kept verdicts equal a fresh examination of every 
     const SelfCheck on;
     for (unsigned seed = 1; seed <= 8; ++seed)
         for (const double eps : {0.5, 0.1}) {
-            const auto grid = random_volume(4, seed);
+            const auto grid = testing::random_volume(4, seed, false);
             INFO("random 4^3 volume, seed " << seed << ", eps " << eps << " voxel");
             testing::MeshAndVerify r;
             REQUIRE_NOTHROW(r = testing::mesh_and_verify(*grid, 0.0, Inside::Above, eps));
