@@ -10,7 +10,7 @@ using namespace isodel;
 using namespace isodel::test;
 
 namespace {
-double f(int x, int y, int z) { return 1 + x + 3 * y + 11 * z; }
+double raw_sample(int x, int y, int z) { return 1 + x + 3 * y + 11 * z; }
 
 std::string raw_bytes(std::array<int, 3> d, const std::string& type)
 {
@@ -18,7 +18,7 @@ std::string raw_bytes(std::array<int, 3> d, const std::string& type)
     for (int z = 0; z < d[2]; ++z)
         for (int y = 0; y < d[1]; ++y)
             for (int x = 0; x < d[0]; ++x) {
-                const double v = f(x, y, z);
+                const double v = raw_sample(x, y, z);
                 if (type == "float32") append<float>(s, float(v) + 0.25f);
                 else if (type == "uint8") append<std::uint8_t>(s, std::uint8_t(v));
                 else if (type == "uint16") append<std::uint16_t>(s, std::uint16_t(v * 300));
@@ -29,7 +29,7 @@ std::string raw_bytes(std::array<int, 3> d, const std::string& type)
 
 double expected(const std::string& type, int x, int y, int z)
 {
-    const double v = f(x, y, z);
+    const double v = raw_sample(x, y, z);
     if (type == "float32") return v + 0.25;
     if (type == "uint8") return v;
     if (type == "uint16") return v * 300;
