@@ -76,9 +76,21 @@ bool plane_between(const Vec3d& p, const Vec3d& q, double tol, int& axis, double
     return false;
 }
 
-/// First-order distance from x, projected onto the grid plane (axis, coord), to the curve where
-/// Sigma meets that plane: |F| / |in-plane gradient| of the (bilinear) face function.
-double crease_distance(const SampleField::Reader& reader, Vec3d x, int axis, double coord)
+/// Sigma's trace on the grid plane (axis, coord) near x (index space), read from one face cell.
+struct CreaseTrace {
+    double distance; ///< first-order distance from x, projected onto the plane, to the crease curve
+    double trim;     ///< the trim that applies at x (see crease_trace)
+};
+
+/// The face cell's bilinear function phi gives both. `distance` = |phi| / |in-plane gradient|.
+/// `trim` is \p trim, or less next to a face saddle (phi = s + k u w, saddle-centred) whose neck
+/// 2 sqrt(|s / k|) is under 4 trims. There the crease curve's two branches pass within a neck of
+/// each other and the "wedge tip" is the neck itself (s above v) or the gap between two fins
+/// (below v), so cutting at the full trim severs or bridges it (property seed 559). Within
+/// 4 trims + neck of such a saddle the trim shrinks to a quarter neck, but not below \p floor
+/// (a quarter trim): refining toward a crease costs about its length / trim points, and a
+/// smaller floor changed no verdict of the property or held-out seeds.
+CreaseTrace crease_trace(const SampleField::Reader& reader, Vec3d x, int axis, double coord, double trim, double floor)
 {
     x[axis] = coord;
     Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
@@ -90,40 +102,20 @@ double crease_distance(const SampleField::Reader& reader, Vec3d x, int axis, dou
     Vec3d g = f.gradient(l[0], l[1], l[2]);
     g[axis] = 0;
     const double gl = g.length();
-    return gl > 0 ? std::abs(f(l[0], l[1], l[2])) / gl : INFINITY;
-}
+    CreaseTrace out{gl > 0 ? std::abs(f(l[0], l[1], l[2])) / gl : INFINITY, trim};
 
-/// The trim at x (index space, near the grid plane (axis, coord)): \p trim, or less next to a
-/// face saddle of the plane's bilinear face function phi = s + k u w (saddle-centred) whose neck
-/// 2 sqrt(|s / k|) is under 4 trims. There the crease curve's two branches pass within a neck of
-/// each other and the "wedge tip" is the neck itself (s above v) or the gap between two fins
-/// (below v), so cutting at the full trim severs or bridges it (property seed 559). Within
-/// 4 trims + neck of such a saddle the trim shrinks to a quarter neck, but not below \p floor
-/// (a quarter trim): refining toward a crease costs about its length / trim points, and a
-/// smaller floor changed no verdict of the property or held-out seeds.
-double trim_at(const SampleField::Reader& reader, Vec3d x, int axis, double coord, double trim, double floor)
-{
-    x[axis] = coord;
-    Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
-    c[axis] = int(std::lround(coord));
+    // The face's corners: bit u and bit w of the cell_corners index (bit axis is 0).
     const int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
-    auto corner = [&](int du, int dw) {
-        Coord q = c;
-        q[u] += du;
-        q[w] += dw;
-        return reader.phi(q);
-    };
-    const double f00 = corner(0, 0), f10 = corner(1, 0), f01 = corner(0, 1), f11 = corner(1, 1);
+    const double f00 = corner[0], f10 = corner[1 << u], f01 = corner[1 << w], f11 = corner[(1 << u) | (1 << w)];
     const double k = f11 - f10 - f01 + f00;
-    if (k == 0) return trim;
+    if (k == 0) return out;
     const double su = -(f01 - f00) / k, sw = -(f10 - f00) / k; // the saddle, face coordinates
-    if (su < 0 || su > 1 || sw < 0 || sw > 1) return trim;
-    const double sval = f00 - (f10 - f00) * (f01 - f00) / k;
-    const double neck = 2 * std::sqrt(std::abs(sval / k));
-    if (neck >= 4 * trim) return trim;
-    const double du = x[u] - c[u] - su, dw = x[w] - c[w] - sw;
-    if (std::sqrt(du * du + dw * dw) >= 4 * trim + neck) return trim;
-    return std::max(floor, std::min(trim, neck / 4));
+    if (su < 0 || su > 1 || sw < 0 || sw > 1) return out;
+    const double neck = 2 * std::sqrt(std::abs((f00 - (f10 - f00) * (f01 - f00) / k) / k));
+    if (neck >= 4 * trim) return out;
+    const double du = l[u] - su, dw = l[w] - sw;
+    if (std::sqrt(du * du + dw * dw) < 4 * trim + neck) out.trim = std::max(floor, std::min(trim, neck / 4));
+    return out;
 }
 
 /// x (index space, near the grid plane (axis, coord)) is within r of a grid edge lying in that
@@ -182,10 +174,11 @@ void cancel_crease_pairs(const SampleField::Reader& reader, std::vector<double>&
             // it, near the curve (the trim shrinks next to a small-neck face saddle).
             auto within_trim = [&] {
                 if (std::max(std::abs(p[axis] - coord), std::abs(q[axis] - coord)) >= tol.trim) return false;
-                const double trim = std::min(trim_at(reader, p, axis, coord, tol.trim, 0.25 * tol.trim),
-                                             trim_at(reader, q, axis, coord, tol.trim, 0.25 * tol.trim));
+                const CreaseTrace tp = crease_trace(reader, p, axis, coord, tol.trim, 0.25 * tol.trim),
+                                  tq = crease_trace(reader, q, axis, coord, tol.trim, 0.25 * tol.trim);
+                const double trim = std::min(tp.trim, tq.trim);
                 return std::max(std::abs(p[axis] - coord), std::abs(q[axis] - coord)) < trim &&
-                       std::max(crease_distance(reader, p, axis, coord), crease_distance(reader, q, axis, coord)) < trim;
+                       std::max(tp.distance, tq.distance) < trim;
             };
             // No cut next to a critical grid edge (tested last: it reads up to 20 samples).
             auto near_critical = [&] {

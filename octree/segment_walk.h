@@ -33,7 +33,7 @@ struct SegmentCrossings {
 /// `separation` (1e-4 voxel) only acts on wedges sharper than separation / trim radians.
 /// Next to a face saddle whose neck is under 4 trims the crease curve's two branches pass within
 /// a neck of each other; there the trim shrinks to a quarter neck, not below a quarter trim
-/// (segment_walk.cpp, trim_at). Zero tolerances keep every crossing. All in index units.
+/// (segment_walk.cpp, crease_trace). Zero tolerances keep every crossing. All in index units.
 ///
 /// Not next to a critical grid edge: where both samples of a grid edge lie within
 /// `critical_edge` of v and F turns back in both directions across the edge (a saddle, a needle

@@ -3,7 +3,7 @@
 // a neck (saddle above v) or the gap between two fins (below v): cutting it at the full trim
 // severs the neck or bridges the gap. So within 4 trims + neck of a face saddle whose neck
 // 2 sqrt(|s/k|) is under 4 trims (phi = s + k u w on the face) the trim shrinks to a quarter neck
-// (segment_walk.cpp, trim_at). Tried 2026-11-25 and not kept: no cut at all there. It certified
+// (segment_walk.cpp, crease_trace). Tried 2026-11-25 and not kept: no cut at all there. It certified
 // this cell too, but property seed 1039 then refined 5873 points into a 0.4 x 0.1 voxel patch
 // next to such a saddle and gained a component; with the quarter-neck trim seed 1039 verifies.
 #include <catch2/catch.hpp>
