@@ -37,6 +37,7 @@ std::string to_json(const MeshStats& s)
           << ", \"blocks_failed\": " << p.blocks_failed << ", \"block_points\": " << p.block_points
           << ", \"seam_points\": " << p.seam_points << "}";
     }
+    if (s.certify_attempts > 0) o << ",\n  \"certify_attempts\": " << s.certify_attempts;
     const TetStats& t = s.tets;
     if (t.vertices > 0) {
         o << ",\n  \"tets\": {\"vertices\": " << t.vertices << ", \"tets_inside\": " << t.tets_inside

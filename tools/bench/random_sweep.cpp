@@ -7,7 +7,9 @@
 // (kind, eps): runs, verified, failures by seed, total vertices and time.
 //
 //   random_sweep [--n 5] [--seeds 21-100] [--eps-voxels 0.5,0.25,0.1] [--kinds plain,quantized]
-//                [--threads 1]
+//                [--threads 1] [--certify 0|1]
+// With --certify 1 each run is MeshOptions::certify (a failed verification is meshed again with
+// the next crease cut); a run it refuses (GuaranteeViolated) is listed as "(error)".
 // The volumes are the property test's (testing::random_volume in tests/verify/
 // verify_test_support.h, which must stay identical: seeds named in tests and the README refer
 // to it): n^3 uniform samples in [-1, 1] drawn from std::mt19937(seed) in x-fastest order,
@@ -62,6 +64,7 @@ int main(int argc, char** argv)
 {
     using isodel::bench::split;
     int n = 5, threads = 1, first = 21, last = 100;
+    bool certify = false;
     std::vector<double> eps{0.5, 0.25, 0.1};
     std::vector<std::string> kinds{"plain", "quantized"};
     try {
@@ -86,6 +89,8 @@ int main(int argc, char** argv)
                 }
                 else if (a == "--kinds")
                     kinds = split(v);
+                else if (a == "--certify")
+                    certify = std::stoi(v) != 0;
                 else
                     throw std::invalid_argument("unknown option " + a + " (see tools/bench/random_sweep.cpp)");
             }
@@ -120,6 +125,7 @@ int main(int argc, char** argv)
                 mo.inside = isodel::Inside::Above;
                 mo.eps_voxels = e;
                 mo.threads = threads;
+                mo.certify = certify;
                 ++row.runs;
                 const auto t0 = std::chrono::steady_clock::now();
                 isodel::MeshResult r;

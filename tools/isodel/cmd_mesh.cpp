@@ -23,6 +23,7 @@ struct MeshCliOptions {
     std::size_t max_points = 0;
     bool quiet = false;
     bool snap = false;
+    bool certify = false;
     bool no_improve = false;
     double facet_angle = 0;
 };
@@ -60,6 +61,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                     "Partitioned meshing (paper Fig. 8): blocks of this many voxels per axis, meshed "
                     "concurrently with protective collars, then merged (dense grids; 0 = off)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--certify", o->certify,
+                  "Verify the surface before writing it (topology against an independent computation, eps, "
+                  "manifold, Delaunay); if it fails, mesh again with other crease cuts; exit 1 and write "
+                  "nothing if none verifies");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->callback([o, &exit_code] {
         if (!(o->eps >= 0) || !(o->eps_voxels > 0)) throw InvalidInput("--eps/--eps-voxels must be positive");
@@ -88,6 +93,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.max_rounds = o->max_rounds;
         mo.max_points = o->max_points;
         mo.snap = o->snap;
+        mo.certify = o->certify;
         mo.block_voxels = o->blocks;
         if (!o->tets.empty())
             mo.tets = o->region == "both" ? TetRegion::Both
@@ -95,8 +101,13 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.improve_tets = !o->no_improve;
         mo.facet_angle_deg = o->facet_angle;
         // An adaptive file (`isodel decimate`): mesh on its leaves (Property IV).
-        MeshResult res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
-                                                 : mesh_isosurface(*vol.grid, mo, &progress);
+        MeshResult res;
+        try {
+            res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
+                                          : mesh_isosurface(*vol.grid, mo, &progress);
+        } catch (const GuaranteeViolated& e) {
+            throw GuaranteeViolated(o->in.path + ": " + e.what()); // name the file (exit status 1)
+        }
 
         const auto tw = std::chrono::steady_clock::now();
         progress.start("write");
@@ -116,7 +127,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                       << res.stats.triangles << " triangles, " << res.stats.components.size()
                       << " components; genus";
             for (const auto& c : res.stats.components) std::cerr << ' ' << c.genus;
-            std::cerr << ")\n";
+            std::cerr << ")";
+            if (res.stats.certify_attempts > 0)
+                std::cerr << ", verified (crease cut " << res.stats.certify_attempts << " of the list)";
+            std::cerr << "\n";
             if (!o->tets.empty()) {
                 const TetStats& t = res.stats.tets;
                 std::cerr << "isodel mesh: wrote " << o->tets << " (" << t.vertices << " vertices, "
