@@ -72,7 +72,9 @@ struct MeshOptions {
     /// saddle very close to v (about 2 in 1000 random 5^3 volumes); when the check fails the
     /// surface is meshed again with the next of a fixed list of cuts (MeshStats::certify_attempts),
     /// and when none verifies mesh_isosurface throws GuaranteeViolated saying why: a wrong mesh
-    /// is never returned. Costs one verification per attempt (about as long as the meshing).
+    /// is never returned. So does a reference topology the verifier cannot settle (near-critical
+    /// data). Costs one verification per attempt (about as long as the meshing); with tets, each
+    /// attempt builds them.
     bool certify = false;
 };
 

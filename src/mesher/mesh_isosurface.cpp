@@ -492,7 +492,10 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
 
     std::ostringstream failures;
     int attempt = 0;
+    // After a tie shift the critical-edge guard is off anyway: the cut without it is the default.
+    const bool tie_shifted = field.effective_isovalue() != field.isovalue();
     for (const CreaseCut& cut : kCertifyCuts) {
+        if (tie_shifted && !cut.critical_edge_guard && cut.trim_fraction == 0) continue;
         ++attempt;
         MeshResult r;
         try {
@@ -508,6 +511,11 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
         vo.eps = r.stats.eps_world;
         const VerifyReport rep = verify_surface(grid, r.surface, vo);
         const double seconds = since(t0);
+        // Near-critical data whose reference topology no refinement settles: nothing to certify
+        // against, whatever the cut (isodel verify reports it as "undetermined").
+        if (!rep.reference.determined)
+            throw GuaranteeViolated("certify: the reference topology of Sigma stays undetermined (a saddle of F "
+                                    "too close to v for the verifier's refinements); the surface cannot be certified");
         if (rep.passed()) {
             r.stats.certify_attempts = attempt;
             r.stats.seconds["certify"] = seconds;
