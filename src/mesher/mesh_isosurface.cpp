@@ -487,7 +487,8 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
 {
     // Share the grid without copying it: the field keeps a non-owning pointer for the call.
     openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
-    const octree::SampleField field(gptr, options.isovalue, inside_side(grid, options));
+    const Inside inside = inside_side(grid, options);
+    const octree::SampleField field(gptr, options.isovalue, inside);
     if (!options.certify) return mesh_once(field, adaptive, options, interrupter, CreaseCut());
 
     std::ostringstream failures;
@@ -507,7 +508,7 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
         const auto t0 = Clock::now();
         VerifyOptions vo;
         vo.isovalue = options.isovalue;
-        vo.inside = inside_side(grid, options);
+        vo.inside = inside;
         vo.eps = r.stats.eps_world;
         const VerifyReport rep = verify_surface(grid, r.surface, vo);
         const double seconds = since(t0);

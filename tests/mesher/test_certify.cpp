@@ -34,9 +34,9 @@ int certified_or_refused(const openvdb::FloatGrid& grid, double eps_voxels)
 {
     const auto plain = testing::mesh_and_verify(grid, options_at(eps_voxels, false));
     INFO("default cut: " << plain.report.summary());
-    MeshResult r;
+    testing::MeshAndVerify c;
     try {
-        r = mesh_isosurface(grid, options_at(eps_voxels, true));
+        c = testing::mesh_and_verify(grid, options_at(eps_voxels, true));
     } catch (const GuaranteeViolated& e) {
         const std::string what = e.what();
         INFO(what);
@@ -45,13 +45,9 @@ int certified_or_refused(const openvdb::FloatGrid& grid, double eps_voxels)
         CHECK(what.find("attempt 5") != std::string::npos);
         return 0;
     }
-    VerifyOptions vo;
-    vo.isovalue = 0.0;
-    vo.inside = Inside::Above;
-    vo.eps_voxels = eps_voxels;
-    const VerifyReport rep = verify_surface(grid, r.surface, vo);
-    INFO("certified: " << rep.summary());
-    CHECK(rep.passed());
+    const MeshResult& r = c.mesh;
+    INFO("certified: " << c.report.summary());
+    CHECK(c.report.passed());
     if (plain.report.passed()) {
         CHECK(r.stats.certify_attempts == 1);
         CHECK(r.surface.vertices == plain.mesh.surface.vertices);
