@@ -41,6 +41,7 @@ const char* to_string(Violation v)
     case Violation::VoronoiFacet: return "CBP_VF";
     case Violation::FacetLoop: return "CBP_VF-loop";
     case Violation::VoronoiCell: return "CBP_VC";
+    case Violation::VoronoiCellDisk: return "CBP_VC-disk";
     case Violation::Epsilon: return "epsilon";
     case Violation::Hausdorff: return "hausdorff";
     case Violation::FacetAngle: return "facet-angle";
@@ -213,10 +214,10 @@ void ViolationFinder::examine(const FacetCache& cache, std::uint32_t p)
         }
         s = t;
     }
-    // CBP_VC: with every Voronoi edge and facet a closed ball, Vor(p) meets Sigma in a disk
-    // iff the boundary of Vor(p) n Sigma is one curve (Theorem 4 rules out components inside
-    // a cell, Theorem 5 positive genus on cubic grids): the restricted facets around p form
-    // one cycle. Union facets that share an edge (p, w). (Read only when no vertex has a
+    // CBP_VC: with every Voronoi edge and facet a closed ball, the boundary of Vor(p) n Sigma
+    // must be one curve (Theorem 4 rules out components inside a cell): the restricted facets
+    // around p form one cycle. Positive genus inside the cell, which Theorem 5 wrongly rules
+    // out on cubic grids, is voronoi_cell_disks.h's check. Union facets that share an edge (p, w). (Read only when no vertex has a
     // CBP_VF violation, as the paper orders the checks.)
     if (n > 0) {
         parent_.resize(n);

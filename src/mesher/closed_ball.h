@@ -27,6 +27,7 @@ enum class Violation {
     VoronoiFacet, ///< CBP_VF: a Delaunay edge has other than 0 or 2 restricted facets
     FacetLoop,    ///< CBP_VF: Sigma meets a Voronoi facet in a closed loop (facet_loops.h)
     VoronoiCell,  ///< CBP_VC: a surface vertex's restricted link is not one cycle (Theorem 5)
+    VoronoiCellDisk, ///< CBP_VC: Vor(p) n Sigma not certified a disk (voronoi_cell_disks.h)
     Epsilon,      ///< |surface point - circumcentre| > eps (Section 4.1, mesh refinement)
     Hausdorff,    ///< a one-sided distance between a facet and Sigma exceeds eps (measured)
     FacetAngle,   ///< optional: a restricted facet's smallest angle is below the bound

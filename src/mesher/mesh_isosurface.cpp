@@ -18,6 +18,7 @@
 #include "mesher/thin_tubes.h"
 #include "mesher/tunnel_shoulders.h"
 #include "mesher/volume_mesh.h"
+#include "mesher/voronoi_cell_disks.h"
 #include "mesher/voxel_bound.h"
 #include "octree/adaptive_vdb_format.h"
 #include "octree/edge_crossings.h"
@@ -189,6 +190,12 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     std::vector<Vertex_handle> grid_pending;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
         if (v->info().kind == PointKind::Grid) grid_pending.push_back(v);
+    // Surface vertices whose Voronoi cell is not yet certified to meet Sigma in a disk.
+    std::vector<Vertex_handle> disk_pending;
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        if (v->info().on_surface()) disk_pending.push_back(v);
+    std::sort(disk_pending.begin(), disk_pending.end(),
+              [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
 
     // A Voronoi cell that leaves its bound is a hole in G: add the grid points of the trap block
     // around the point's cell, never search further.
@@ -295,6 +302,17 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
             }
             if (rep.kind == Violation::None) {
+                // CBP_VC's last clause: no handle inside one Voronoi cell (voronoi_cell_disks.h).
+                const auto td = Clock::now();
+                VoronoiCellDiskStats ds;
+                rep.candidates = voronoi_cell_disk_violations(dt, field, disk_pending, crease.trim * field.min_voxel_edge(), &ds);
+                if (std::getenv("ISODEL_TRACE"))
+                    std::fprintf(stderr, "  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated\n",
+                                 1e3 * since(td), ds.certified, ds.sampled, ds.unresolved, rep.candidates.size());
+                filter_candidates(rep.candidates, run.keep);
+                if (!rep.candidates.empty()) rep.kind = Violation::VoronoiCellDisk;
+            }
+            if (rep.kind == Violation::None) {
                 std::vector<const FacetCache::Entry*> restricted;
                 for (const auto& e : cache.active())
                     if (e.crossings == 1) restricted.push_back(&e);
@@ -335,6 +353,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
             for (const auto& v : ins.inserted) {
                 loops.touched(v);
+                disk_pending.push_back(v);
                 if (rep.kind == Violation::FacetAngle) ++st.n_facet_angle;
                 if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff || rep.kind == Violation::FacetAngle)
                     ++st.n_geometry;
@@ -356,6 +375,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 if (next.inserted.empty()) break;
                 for (const auto& v : next.inserted) {
                     loops.touched(v);
+                    disk_pending.push_back(v);
                     ++st.n_topology;
                     measure(v, st.max_cells_n, st.bound_n, over_bound);
                 }

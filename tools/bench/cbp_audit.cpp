@@ -4,7 +4,7 @@
 // Del(E u G u N) of the final points with exact circumcentres, walks every finite Voronoi edge
 // with no crease tolerance, and samples every Voronoi facet on a RES x RES lattice.
 //
-//   cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--res 40] [--show 10]
+//   cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--res 40] [--cell-res 0] [--points OUT.xyz] [--show 10]
 //
 // Prints (index coordinates): Voronoi edges crossing Sigma more than once (CBP_VE), facets whose
 // boundary crosses Sigma more than twice (CBP_VF) or whose interior holds a sampled island of
@@ -74,7 +74,8 @@ int main(int argc, char** argv)
     const std::string input = argv[1];
     double iso = 0, eps = 0.5;
     bool have_iso = false;
-    int res = 40, show = 10;
+    int res = 40, show = 10, cell_res = 0;
+    std::string points_out;
     std::string inside;
     try {
         for (int i = 2; i < argc; i += 2) {
@@ -90,6 +91,10 @@ int main(int argc, char** argv)
                     inside = v;
                 else if (a == "--res")
                     res = std::stoi(v);
+                else if (a == "--points")
+                    points_out = v;
+                else if (a == "--cell-res")
+                    cell_res = std::stoi(v);
                 else if (a == "--show")
                     show = std::stoi(v);
                 else
@@ -123,6 +128,13 @@ int main(int argc, char** argv)
         const auto r = isodel::mesh_isosurface(*vol.grid, mo);
         std::printf("%s: M has %zu vertices, %zu triangles; %zu points in the final triangulation\n", input.c_str(),
                     r.surface.vertices.size(), r.surface.triangles.size(), r.points.size());
+        if (!points_out.empty()) { // the final point set, for outside analysis (x y z per line)
+            FILE* f = std::fopen(points_out.c_str(), "w");
+            if (!f) throw std::runtime_error(points_out + ": cannot write");
+            for (const auto& q : r.points)
+                std::fprintf(f, "%.17g %.17g %.17g\n", q[0], q[1], q[2]);
+            std::fclose(f);
+        }
         const isodel::octree::SampleField field(vol.grid, iso, side);
         const isodel::octree::SampleField::Reader reader(field);
         auto idx = [&](const P3& p) { return field.world_to_index(V3(p.x(), p.y(), p.z())); };
@@ -256,11 +268,93 @@ int main(int argc, char** argv)
                     break;
                 }
         }
+        // Voronoi cells of M's vertices: the Euler characteristic of Sigma n Vor(p), sampled. With
+        // A, B the parts of Vor(p) on either side of Sigma, chi(Sigma n Vor) = chi(A) + chi(B) -
+        // chi(Vor) (Mayer-Vietoris); each is the chi of a union of closed lattice cubes. A disk has 1,
+        // a torus minus a disk -1: the handle CBP_VC's one-cycle test cannot see.
+        int vc = 0, cells = 0;
+        std::set<int> on_mesh;
+        for (const auto& k : in_mesh)
+            for (const int id : k)
+                on_mesh.insert(id);
+        for (auto v = dt.finite_vertices_begin(); cell_res > 0 && v != dt.finite_vertices_end(); ++v) {
+            if (!on_mesh.count(v->info())) continue;
+            std::vector<DT::Cell_handle> inc;
+            dt.incident_cells(v, std::back_inserter(inc));
+            std::vector<DT::Vertex_handle> nb;
+            dt.finite_adjacent_vertices(v, std::back_inserter(nb));
+            bool unbounded = false;
+            V3 lo(1e300), hi(-1e300);
+            for (const auto& c : inc) {
+                if (dt.is_infinite(c)) {
+                    unbounded = true;
+                    break;
+                }
+                const P3 cc = exact_circumcenter(c);
+                const V3 q(cc.x(), cc.y(), cc.z());
+                lo = V3(std::min(lo[0], q[0]), std::min(lo[1], q[1]), std::min(lo[2], q[2]));
+                hi = V3(std::max(hi[0], q[0]), std::max(hi[1], q[1]), std::max(hi[2], q[2]));
+            }
+            if (unbounded) continue;
+            const double h = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / cell_res;
+            if (!(h > 0)) continue;
+            const int n[3] = {int((hi[0] - lo[0]) / h) + 1, int((hi[1] - lo[1]) / h) + 1, int((hi[2] - lo[2]) / h) + 1};
+            const P3& pp = v->point();
+            // side: -1 outside Vor(p), 0 / 1 the two sides of Sigma.
+            std::vector<signed char> side(std::size_t(n[0]) * n[1] * n[2], -1);
+            for (int i = 0; i < n[0]; ++i)
+                for (int j = 0; j < n[1]; ++j)
+                    for (int k = 0; k < n[2]; ++k) {
+                        const P3 q(lo[0] + (i + 0.5) * h, lo[1] + (j + 0.5) * h, lo[2] + (k + 0.5) * h);
+                        const double dp = CGAL::squared_distance(q, pp);
+                        bool mine = true;
+                        for (const auto& w : nb)
+                            if (CGAL::squared_distance(q, w->point()) < dp) {
+                                mine = false;
+                                break;
+                            }
+                        if (mine)
+                            side[(std::size_t(i) * n[1] + j) * n[2] + k] =
+                                isodel::octree::phi_at(reader, idx(q)) >= 0 ? 1 : 0;
+                    }
+            // chi of the union of closed cubes whose side passes \p want; doubled coordinates: an
+            // element with d odd coordinates has dimension d.
+            const int m[3] = {2 * n[0] + 1, 2 * n[1] + 1, 2 * n[2] + 1};
+            std::vector<char> mark(std::size_t(m[0]) * m[1] * m[2]);
+            auto chi = [&](auto want) {
+                std::fill(mark.begin(), mark.end(), 0);
+                for (int i = 0; i < n[0]; ++i)
+                    for (int j = 0; j < n[1]; ++j)
+                        for (int k = 0; k < n[2]; ++k) {
+                            if (!want(side[(std::size_t(i) * n[1] + j) * n[2] + k])) continue;
+                            for (int a = 0; a < 3; ++a)
+                                for (int b = 0; b < 3; ++b)
+                                    for (int c = 0; c < 3; ++c)
+                                        mark[(std::size_t(2 * i + a) * m[1] + 2 * j + b) * m[2] + 2 * k + c] = 1;
+                        }
+                long x = 0;
+                for (int i = 0; i < m[0]; ++i)
+                    for (int j = 0; j < m[1]; ++j)
+                        for (int k = 0; k < m[2]; ++k)
+                            if (mark[(std::size_t(i) * m[1] + j) * m[2] + k]) x += ((i + j + k) % 2) ? -1 : 1;
+                return x;
+            };
+            const long ca = chi([](int s) { return s == 1; }), cb = chi([](int s) { return s == 0; }),
+                       cv = chi([](int s) { return s >= 0; });
+            ++cells;
+            const long cs = ca + cb - cv;
+            if ((ca > 0 && cb > 0 && cs != 1) && ++vc <= show) {
+                const V3 pi = idx(pp);
+                std::printf("  CBP_VC: chi(Sigma n Vor) = %ld (inside %ld, outside %ld, cell %ld) at vertex %d (%.5f %.5f %.5f)\n",
+                            cs, ca, cb, cv, v->info(), pi[0], pi[1], pi[2]);
+            }
+        }
+        std::printf("Voronoi cells of M's vertices sampled: %d; Sigma in them not a disk: %d\n", cells, vc);
         std::printf("Voronoi edges crossing Sigma more than once: %d; M facets with the wrong parity: %d\n", ve,
                     parity);
         std::printf("Voronoi facets sampled: %d; more than 2 boundary crossings: %d; with an interior loop: %d\n",
                     facets, vf, loops);
-        return ve + vf + loops + parity == 0 ? 0 : 1;
+        return ve + vf + loops + parity + vc == 0 ? 0 : 1;
     }
     catch (const std::exception& e) {
         std::fprintf(stderr, "cbp_audit: %s\n", e.what());

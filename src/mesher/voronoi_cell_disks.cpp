@@ -1,0 +1,284 @@
+#include "mesher/voronoi_cell_disks.h"
+
+#include "mesher/cell_surface_euler.h"
+#include "mesher/circumcenter.h"
+#include "octree/cell_interpolant.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace isodel::mesher {
+namespace {
+
+using openvdb::Coord;
+using openvdb::Vec3d;
+
+/// Boxes are split down to 1/16 of a voxel; a vertex gets at most kMaxBoxes of them. Both bound
+/// the work on a Voronoi cell that stays unsettled (the Euler characteristic fallback decides).
+constexpr int kMaxDepth = 4;
+constexpr std::size_t kMaxBoxes = 1 << 14;
+/// A failed direction is replaced by the axis of the normals seen so far, up to kDirections
+/// times: a sharp crease (F is only C0 across cell faces) is a graph over the plane normal to
+/// the bisector of its two sheets, not over the tangent plane of either.
+constexpr int kDirections = 4;
+constexpr std::size_t kMaxNormals = 256;
+/// Sub-lattice of the Euler characteristic fallback (cell_surface_euler.h).
+constexpr int kEulerSamplesPerVoxel = 16;
+
+Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
+
+/// The certificate for one Voronoi cell (see the header).
+class CellCertificate {
+public:
+    CellCertificate(const octree::SampleField::Reader& reader, const Vec3d& p_world, const VoronoiCellPlanes& cell)
+        : reader_(reader), field_(reader.field()), p_(p_world), cell_(cell)
+    {
+    }
+
+    /// grad F at p, index space (zero at a critical point on Sigma).
+    Vec3d normal_at_p() const
+    {
+        const Vec3d pi = field_.world_to_index(p_);
+        const Coord pc(int(std::floor(pi[0])), int(std::floor(pi[1])), int(std::floor(pi[2])));
+        return cell_trilinear(pc).gradient(pi[0] - pc.x(), pi[1] - pc.y(), pi[2] - pc.z());
+    }
+
+    /// Runs the certificate for direction \p d on the index-space box [lo, hi] (the bounding
+    /// box of Vor(p)).
+    void run(const Vec3d& lo, const Vec3d& hi, const Vec3d& d)
+    {
+        d_ = d;
+        settled_ = true;
+        boxes_ = 0;
+        best_d2_ = 0;
+        best_.reset();
+        normals_.clear();
+        const Coord c0(int(std::floor(lo[0])), int(std::floor(lo[1])), int(std::floor(lo[2])));
+        const Coord c1(int(std::floor(hi[0])), int(std::floor(hi[1])), int(std::floor(hi[2])));
+        for (int z = c0.z(); z <= c1.z(); ++z)
+            for (int y = c0.y(); y <= c1.y(); ++y)
+                for (int x = c0.x(); x <= c1.x(); ++x) {
+                    const Coord c(x, y, z);
+                    const Vec3d o = c.asVec3d();
+                    Vec3d a, b;
+                    for (int k = 0; k < 3; ++k) {
+                        a[k] = std::max(lo[k] - o[k], 0.0);
+                        b[k] = std::min(hi[k] - o[k], 1.0);
+                    }
+                    if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) continue;
+                    box(cell_trilinear(c), c, a, b, 0);
+                }
+    }
+
+    bool settled() const { return settled_; }
+    const std::optional<Vec3d>& farthest_point() const { return best_; } ///< world coordinates
+    /// Unit normals (index space) of Sigma at the points found in unsettled leaves in Vor(p).
+    const std::vector<Vec3d>& leaf_normals() const { return normals_; }
+
+private:
+    octree::Trilinear cell_trilinear(const Coord& c) const
+    {
+        double corner[8];
+        reader_.cell_corners(c, corner);
+        return octree::Trilinear::from_corners(corner);
+    }
+
+    void box(const octree::Trilinear& f, const Coord& cell, const Vec3d& lo, const Vec3d& hi, int depth)
+    {
+        if (++boxes_ > kMaxBoxes) {
+            settled_ = false;
+            return;
+        }
+        Vec3d X[8];
+        double F[8];
+        int inside = 0, along = 0;
+        for (int k = 0; k < 8; ++k) {
+            X[k] = Vec3d(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
+            F[k] = f(X[k][0], X[k][1], X[k][2]);
+            inside += F[k] >= 0; // phi >= 0 is inside (segment_walk.h's convention)
+            along += d_.dot(f.gradient(X[k][0], X[k][1], X[k][2])) > 0;
+        }
+        if (inside == 0 || inside == 8 || along == 8) return;
+        if (cell_.misses_box(cell.asVec3d() + lo, cell.asVec3d() + hi)) return;
+        if (depth == kMaxDepth) {
+            settled_ = false;
+            leaf_points(f, cell, X, F);
+            return;
+        }
+        const Vec3d m = 0.5 * (lo + hi);
+        for (int k = 0; k < 8; ++k) {
+            const Vec3d a(k & 1 ? m[0] : lo[0], k & 2 ? m[1] : lo[1], k & 4 ? m[2] : lo[2]);
+            const Vec3d b(k & 1 ? hi[0] : m[0], k & 2 ? hi[1] : m[1], k & 4 ? hi[2] : m[2]);
+            box(f, cell, a, b, depth + 1);
+        }
+    }
+
+    /// The points of Sigma on the unsettled leaf's edges (F is linear along them) that lie in
+    /// Vor(p); keeps the farthest from p.
+    void leaf_points(const octree::Trilinear& f, const Coord& cell, const Vec3d X[8], const double F[8])
+    {
+        static const int kEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                          {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+        for (const auto& e : kEdges) {
+            const double f0 = F[e[0]], f1 = F[e[1]];
+            if ((f0 >= 0) == (f1 >= 0)) continue;
+            const Vec3d x = X[e[0]] + (f0 / (f0 - f1)) * (X[e[1]] - X[e[0]]);
+            if (!cell_.contains(cell.asVec3d() + x)) continue;
+            const Vec3d w = field_.index_to_world(cell.asVec3d() + x);
+            const double d2 = (w - p_).lengthSqr();
+            if (d2 > best_d2_) {
+                best_d2_ = d2;
+                best_ = w;
+            }
+            const Vec3d n = f.gradient(x[0], x[1], x[2]);
+            if (normals_.size() < kMaxNormals && n.lengthSqr() > 0) normals_.push_back(n.unit());
+        }
+    }
+
+    const octree::SampleField::Reader& reader_;
+    const octree::SampleField& field_;
+    Vec3d p_;
+    const VoronoiCellPlanes& cell_;
+    Vec3d d_;
+    bool settled_ = true;
+    std::size_t boxes_ = 0;
+    double best_d2_ = 0;
+    std::optional<Vec3d> best_;
+    std::vector<Vec3d> normals_;
+};
+
+/// A direction d with d . n as large as possible in the worst case over the unit vectors \p n
+/// (the axis of their smallest enclosing cone), approximated by walking from \p d toward the
+/// worst-covered normal with shrinking steps (Badoiu and Clarkson's core-set iteration).
+Vec3d cone_axis(const std::vector<Vec3d>& n, Vec3d d)
+{
+    d = d.unit();
+    for (int k = 0; k < 64; ++k) {
+        std::size_t worst = 0;
+        for (std::size_t i = 1; i < n.size(); ++i)
+            if (d.dot(n[i]) < d.dot(n[worst])) worst = i;
+        const Vec3d next = d + n[worst] * (1.0 / (k + 2));
+        if (!(next.lengthSqr() > 0)) break;
+        d = next.unit();
+    }
+    return d;
+}
+
+struct CellGeometry {
+    std::vector<Vec3d> neighbours; ///< world
+    Vec3d lo, hi;                  ///< index-space bounding box of the Voronoi vertices
+    double extent = 0;             ///< largest distance from p to a Voronoi vertex, world
+    bool bounded = true;
+};
+
+} // namespace
+
+std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const octree::SampleField& field,
+                                                    std::vector<Vertex_handle>& pending, double min_extent,
+                                                    VoronoiCellDiskStats* stats)
+{
+    // Incident cells and neighbours are gathered serially: CGAL marks visited cells in the
+    // triangulation.
+    std::vector<CellGeometry> geo(pending.size());
+    std::vector<Cell_handle> cells;
+    std::vector<Vertex_handle> nbs;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+        cells.clear();
+        nbs.clear();
+        dt.incident_cells(pending[i], std::back_inserter(cells));
+        dt.adjacent_vertices(pending[i], std::back_inserter(nbs));
+        auto& g = geo[i];
+        g.lo = Vec3d(INFINITY);
+        g.hi = Vec3d(-INFINITY);
+        for (const Cell_handle& c : cells) {
+            if (dt.is_infinite(c)) {
+                g.bounded = false;
+                break;
+            }
+            const Point cc = robust_circumcenter(c);
+            g.extent = std::max(g.extent, std::sqrt(CGAL::squared_distance(cc, pending[i]->point())));
+            const Vec3d q = field.world_to_index(to_vdb(cc));
+            g.lo = Vec3d(std::min(g.lo[0], q[0]), std::min(g.lo[1], q[1]), std::min(g.lo[2], q[2]));
+            g.hi = Vec3d(std::max(g.hi[0], q[0]), std::max(g.hi[1], q[1]), std::max(g.hi[2], q[2]));
+        }
+        for (const Vertex_handle& v : nbs)
+            if (!dt.is_infinite(v)) g.neighbours.push_back(to_vdb(v->point()));
+    }
+    enum class Verdict { Certified, Sampled, Violated, Unresolved };
+    std::vector<Verdict> verdict(pending.size(), Verdict::Certified);
+    std::vector<std::optional<Candidate>> found(pending.size());
+    tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 16), [&](const auto& r) {
+        auto& reader = readers.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            if (!geo[i].bounded) { // a hole in G: the voxel-bound repair's business
+                verdict[i] = Verdict::Unresolved;
+                continue;
+            }
+            const Vertex_handle v = pending[i];
+            const VoronoiCellPlanes planes(field, to_vdb(v->point()), geo[i].neighbours);
+            CellCertificate cert(reader, to_vdb(v->point()), planes);
+            Vec3d d = cert.normal_at_p();
+            if (!(d.lengthSqr() > 0)) {
+                verdict[i] = Verdict::Unresolved; // a critical point on Sigma: no normal to start from
+                continue;
+            }
+            std::vector<Vec3d> normals{d.unit()};
+            bool certified = false;
+            for (int k = 0; k < kDirections && !certified; ++k) {
+                cert.run(geo[i].lo, geo[i].hi, d);
+                certified = cert.settled();
+                if (certified || !cert.farthest_point()) break;
+                for (const Vec3d& n : cert.leaf_normals())
+                    if (normals.size() < kMaxNormals) normals.push_back(n);
+                d = cone_axis(normals, d);
+                // No hemisphere holds the normals seen: no direction can certify the cell.
+                if (std::any_of(normals.begin(), normals.end(), [&](const Vec3d& n) { return !(d.dot(n) > 0); })) break;
+            }
+            if (certified) continue;
+            // Not a graph over any direction tried (a fold, the tip of a thin tube, a blob around
+            // one sample): count the topology of a sample instead. chi = sum over components of
+            // 2 - 2 genus - boundaries, so chi < 0 means a handle (or a component with three or
+            // more boundary curves); chi 0 and 2 are the two-boundary and two-component pieces
+            // that knife-edge crease cuts leave (octree/segment_walk.h), which the other checks
+            // own. On 1hpv_molmap at eps 0.25, 4141 of 17113 cells needed the sample: 3508 had
+            // chi 1, 359 chi 0, 274 chi 2, none negative; inserting for chi != 1 refined those
+            // creases and broke 5 of 1000 random volumes that were right before.
+            const int chi = sampled_euler_characteristic(reader, planes, geo[i].lo, geo[i].hi, kEulerSamplesPerVoxel);
+            if (chi >= 0) {
+                verdict[i] = Verdict::Sampled;
+                continue;
+            }
+            if (!cert.farthest_point() || geo[i].extent < min_extent) {
+                verdict[i] = Verdict::Unresolved;
+                continue;
+            }
+            verdict[i] = Verdict::Violated;
+            const Vec3d& w = *cert.farthest_point();
+            const Point q(w[0], w[1], w[2]);
+            found[i] = Candidate{q, PointKind::Topology, std::sqrt(CGAL::squared_distance(q, v->point())),
+                                 FacetKey{{v->info().id, 0, 0}}};
+        }
+    });
+    std::vector<Candidate> out;
+    std::vector<Vertex_handle> still;
+    VoronoiCellDiskStats s;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+        if (verdict[i] == Verdict::Certified || verdict[i] == Verdict::Sampled) {
+            ++(verdict[i] == Verdict::Certified ? s.certified : s.sampled);
+            continue;
+        }
+        still.push_back(pending[i]);
+        if (verdict[i] == Verdict::Unresolved) ++s.unresolved;
+        else out.push_back(*found[i]);
+    }
+    pending.swap(still);
+    if (stats) *stats = s;
+    return out;
+}
+
+} // namespace isodel::mesher
