@@ -6,6 +6,7 @@
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <openvdb/math/Vec3.h>
 
 #include <array>
 #include <cstdint>
@@ -15,6 +16,9 @@ namespace isodel::mesher {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_3;
 using Vector = K::Vector_3;
+
+/// A CGAL point as an OpenVDB vector (the octree/ side's type).
+inline openvdb::math::Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
 
 /// What a vertex is (paper notation).
 enum class PointKind : std::uint8_t {

@@ -11,8 +11,6 @@
 namespace isodel::mesher {
 namespace {
 
-openvdb::Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
-
 /// The crossing farthest from g on the segments from g to those of its Voronoi vertices (the
 /// circumcentres of \p cells) that lie on the other side of Sigma.
 std::optional<Candidate> check_one(const octree::SampleField::Reader& reader, Vertex_handle g,

@@ -24,8 +24,6 @@ namespace {
 
 using Vec3d = openvdb::Vec3d;
 
-Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
-
 /// Newton projection of a world point onto Sigma along the world gradient of phi. Returns false
 /// when it does not converge (flat phi): the caller then has no bound from it.
 bool project(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,

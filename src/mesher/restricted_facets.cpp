@@ -14,7 +14,6 @@
 namespace isodel::mesher {
 namespace {
 
-openvdb::Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
 Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
 } // namespace

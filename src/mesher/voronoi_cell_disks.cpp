@@ -29,8 +29,6 @@ constexpr std::size_t kMaxNormals = 256;
 /// Sub-lattice of the Euler characteristic fallback (cell_surface_euler.h).
 constexpr int kEulerSamplesPerVoxel = 16;
 
-Vec3d to_vdb(const Point& p) { return {p.x(), p.y(), p.z()}; }
-
 /// The certificate for one Voronoi cell (see the header).
 class CellCertificate {
 public:
@@ -169,10 +167,26 @@ Vec3d cone_axis(const std::vector<Vec3d>& n, Vec3d d)
 }
 
 struct CellGeometry {
-    std::vector<Vec3d> neighbours; ///< world
-    Vec3d lo, hi;                  ///< index-space bounding box of the Voronoi vertices
-    double extent = 0;             ///< largest distance from p to a Voronoi vertex, world
-    bool bounded = true;
+    std::vector<Cell_handle> cells; ///< incident cells: their circumcentres are Vor(p)'s vertices
+    std::vector<Vec3d> neighbours;  ///< world
+    Vec3d lo, hi;                   ///< index-space bounding box of the Voronoi vertices
+    double extent = 0;              ///< largest distance from p to a Voronoi vertex, world
+
+    /// Bounding box and extent from the circumcentres; false if Vor(p) is unbounded.
+    bool measure(const Delaunay& dt, const octree::SampleField& field, const Point& p)
+    {
+        lo = Vec3d(INFINITY);
+        hi = Vec3d(-INFINITY);
+        for (const Cell_handle& c : cells) {
+            if (dt.is_infinite(c)) return false;
+            const Point cc = robust_circumcenter(c);
+            extent = std::max(extent, std::sqrt(CGAL::squared_distance(cc, p)));
+            const Vec3d q = field.world_to_index(to_vdb(cc));
+            lo = Vec3d(std::min(lo[0], q[0]), std::min(lo[1], q[1]), std::min(lo[2], q[2]));
+            hi = Vec3d(std::max(hi[0], q[0]), std::max(hi[1], q[1]), std::max(hi[2], q[2]));
+        }
+        return true;
+    }
 };
 
 } // namespace
@@ -181,32 +195,16 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
                                                     std::vector<Vertex_handle>& pending, double min_extent,
                                                     VoronoiCellDiskStats* stats)
 {
-    // Incident cells and neighbours are gathered serially: CGAL marks visited cells in the
-    // triangulation.
+    // Incident cells and neighbours are gathered serially (CGAL marks visited cells in the
+    // triangulation); circumcentres are computed in the parallel loop.
     std::vector<CellGeometry> geo(pending.size());
-    std::vector<Cell_handle> cells;
     std::vector<Vertex_handle> nbs;
     for (std::size_t i = 0; i < pending.size(); ++i) {
-        cells.clear();
         nbs.clear();
-        dt.incident_cells(pending[i], std::back_inserter(cells));
+        dt.incident_cells(pending[i], std::back_inserter(geo[i].cells));
         dt.adjacent_vertices(pending[i], std::back_inserter(nbs));
-        auto& g = geo[i];
-        g.lo = Vec3d(INFINITY);
-        g.hi = Vec3d(-INFINITY);
-        for (const Cell_handle& c : cells) {
-            if (dt.is_infinite(c)) {
-                g.bounded = false;
-                break;
-            }
-            const Point cc = robust_circumcenter(c);
-            g.extent = std::max(g.extent, std::sqrt(CGAL::squared_distance(cc, pending[i]->point())));
-            const Vec3d q = field.world_to_index(to_vdb(cc));
-            g.lo = Vec3d(std::min(g.lo[0], q[0]), std::min(g.lo[1], q[1]), std::min(g.lo[2], q[2]));
-            g.hi = Vec3d(std::max(g.hi[0], q[0]), std::max(g.hi[1], q[1]), std::max(g.hi[2], q[2]));
-        }
         for (const Vertex_handle& v : nbs)
-            if (!dt.is_infinite(v)) g.neighbours.push_back(to_vdb(v->point()));
+            if (!dt.is_infinite(v)) geo[i].neighbours.push_back(to_vdb(v->point()));
     }
     enum class Verdict { Certified, Sampled, Violated, Unresolved };
     std::vector<Verdict> verdict(pending.size(), Verdict::Certified);
@@ -215,11 +213,11 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 16), [&](const auto& r) {
         auto& reader = readers.local();
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            if (!geo[i].bounded) { // a hole in G: the voxel-bound repair's business
+            const Vertex_handle v = pending[i];
+            if (!geo[i].measure(dt, field, v->point())) { // a hole in G: the voxel-bound repair's business
                 verdict[i] = Verdict::Unresolved;
                 continue;
             }
-            const Vertex_handle v = pending[i];
             const VoronoiCellPlanes planes(field, to_vdb(v->point()), geo[i].neighbours);
             CellCertificate cert(reader, to_vdb(v->point()), planes);
             Vec3d d = cert.normal_at_p();

@@ -14,9 +14,13 @@
 // cut crossings (pairs within eps/50 of a crease curve, eps/200 after a tie shift; see
 // mesh_isosurface.cpp) are expected; anything else, and any parity mismatch, is a mesher defect.
 // The tool does not classify them: read the coordinates. Exit 0 when nothing is found.
+// With --cell-res R > 0 it also counts the Euler characteristic of Sigma in the Voronoi cell of
+// every vertex of M at 1/R voxel and prints the cells with a handle (chi < 0). With --points it
+// writes the final point set (x y z per line).
 #include <isodel/mesh.h>
 #include <isodel/volume.h>
 
+#include "mesher/cell_surface_euler.h"
 #include "octree/sample_field.h"
 #include "octree/segment_walk.h"
 
@@ -268,10 +272,9 @@ int main(int argc, char** argv)
                     break;
                 }
         }
-        // Voronoi cells of M's vertices: the Euler characteristic of Sigma n Vor(p), sampled. With
-        // A, B the parts of Vor(p) on either side of Sigma, chi(Sigma n Vor) = chi(A) + chi(B) -
-        // chi(Vor) (Mayer-Vietoris); each is the chi of a union of closed lattice cubes. A disk has 1,
-        // a torus minus a disk -1: the handle CBP_VC's one-cycle test cannot see.
+        // Voronoi cells of M's vertices: the Euler characteristic of Sigma n Vor(p), sampled at
+        // 1/CELL_RES voxel (mesher/cell_surface_euler.h). A disk has 1; chi < 0 is a handle,
+        // which CBP_VC's one-cycle test cannot see (chi 0 and 2 are pieces crease cuts leave).
         int vc = 0, cells = 0;
         std::set<int> on_mesh;
         for (const auto& k : in_mesh)
@@ -290,66 +293,25 @@ int main(int argc, char** argv)
                     unbounded = true;
                     break;
                 }
-                const P3 cc = exact_circumcenter(c);
-                const V3 q(cc.x(), cc.y(), cc.z());
+                const V3 q = idx(exact_circumcenter(c));
                 lo = V3(std::min(lo[0], q[0]), std::min(lo[1], q[1]), std::min(lo[2], q[2]));
                 hi = V3(std::max(hi[0], q[0]), std::max(hi[1], q[1]), std::max(hi[2], q[2]));
             }
             if (unbounded) continue;
-            const double h = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / cell_res;
-            if (!(h > 0)) continue;
-            const int n[3] = {int((hi[0] - lo[0]) / h) + 1, int((hi[1] - lo[1]) / h) + 1, int((hi[2] - lo[2]) / h) + 1};
-            const P3& pp = v->point();
-            // side: -1 outside Vor(p), 0 / 1 the two sides of Sigma.
-            std::vector<signed char> side(std::size_t(n[0]) * n[1] * n[2], -1);
-            for (int i = 0; i < n[0]; ++i)
-                for (int j = 0; j < n[1]; ++j)
-                    for (int k = 0; k < n[2]; ++k) {
-                        const P3 q(lo[0] + (i + 0.5) * h, lo[1] + (j + 0.5) * h, lo[2] + (k + 0.5) * h);
-                        const double dp = CGAL::squared_distance(q, pp);
-                        bool mine = true;
-                        for (const auto& w : nb)
-                            if (CGAL::squared_distance(q, w->point()) < dp) {
-                                mine = false;
-                                break;
-                            }
-                        if (mine)
-                            side[(std::size_t(i) * n[1] + j) * n[2] + k] =
-                                isodel::octree::phi_at(reader, idx(q)) >= 0 ? 1 : 0;
-                    }
-            // chi of the union of closed cubes whose side passes \p want; doubled coordinates: an
-            // element with d odd coordinates has dimension d.
-            const int m[3] = {2 * n[0] + 1, 2 * n[1] + 1, 2 * n[2] + 1};
-            std::vector<char> mark(std::size_t(m[0]) * m[1] * m[2]);
-            auto chi = [&](auto want) {
-                std::fill(mark.begin(), mark.end(), 0);
-                for (int i = 0; i < n[0]; ++i)
-                    for (int j = 0; j < n[1]; ++j)
-                        for (int k = 0; k < n[2]; ++k) {
-                            if (!want(side[(std::size_t(i) * n[1] + j) * n[2] + k])) continue;
-                            for (int a = 0; a < 3; ++a)
-                                for (int b = 0; b < 3; ++b)
-                                    for (int c = 0; c < 3; ++c)
-                                        mark[(std::size_t(2 * i + a) * m[1] + 2 * j + b) * m[2] + 2 * k + c] = 1;
-                        }
-                long x = 0;
-                for (int i = 0; i < m[0]; ++i)
-                    for (int j = 0; j < m[1]; ++j)
-                        for (int k = 0; k < m[2]; ++k)
-                            if (mark[(std::size_t(i) * m[1] + j) * m[2] + k]) x += ((i + j + k) % 2) ? -1 : 1;
-                return x;
-            };
-            const long ca = chi([](int s) { return s == 1; }), cb = chi([](int s) { return s == 0; }),
-                       cv = chi([](int s) { return s >= 0; });
+            std::vector<V3> nbw;
+            for (const auto& w : nb)
+                nbw.push_back(V3(w->point().x(), w->point().y(), w->point().z()));
+            const V3 pw(v->point().x(), v->point().y(), v->point().z());
+            const isodel::mesher::VoronoiCellPlanes planes(field, pw, nbw);
+            const int chi = isodel::mesher::sampled_euler_characteristic(reader, planes, lo, hi, cell_res);
             ++cells;
-            const long cs = ca + cb - cv;
-            if ((ca > 0 && cb > 0 && cs != 1) && ++vc <= show) {
-                const V3 pi = idx(pp);
-                std::printf("  CBP_VC: chi(Sigma n Vor) = %ld (inside %ld, outside %ld, cell %ld) at vertex %d (%.5f %.5f %.5f)\n",
-                            cs, ca, cb, cv, v->info(), pi[0], pi[1], pi[2]);
+            if (chi < 0 && ++vc <= show) {
+                const V3 pi = idx(v->point());
+                std::printf("  CBP_VC: chi(Sigma n Vor) = %d at vertex %d (%.5f %.5f %.5f)\n", chi, v->info(), pi[0],
+                            pi[1], pi[2]);
             }
         }
-        std::printf("Voronoi cells of M's vertices sampled: %d; Sigma in them not a disk: %d\n", cells, vc);
+        std::printf("Voronoi cells of M's vertices sampled: %d; with a handle (chi < 0): %d\n", cells, vc);
         std::printf("Voronoi edges crossing Sigma more than once: %d; M facets with the wrong parity: %d\n", ve,
                     parity);
         std::printf("Voronoi facets sampled: %d; more than 2 boundary crossings: %d; with an interior loop: %d\n",
