@@ -19,6 +19,7 @@
 /// is reproduced on sub-faces by corner values gives the same guarantee; others need their own
 /// constraints.
 #include "octree/adaptive_grid.h"
+#include "octree/cell_interpolant.h" // Cubic
 
 #include <array>
 #include <optional>
@@ -26,12 +27,6 @@
 namespace isodel::octree {
 
 using openvdb::Vec3d;
-
-/// A polynomial c[0] + c[1] t + c[2] t^2 + c[3] t^3.
-struct Cubic {
-    std::array<double, 4> c{0, 0, 0, 0};
-    double operator()(double t) const { return ((c[3] * t + c[2]) * t + c[1]) * t + c[0]; }
-};
 
 /// One cell's interpolant from its corner values (index n = i + 2j + 4k for corner (i,j,k)),
 /// in local coordinates u in [0,1]^3.

@@ -28,6 +28,8 @@
 ///    otherwise (a dense file's box whose background 0 equals v). Beyond domain() every sample
 ///    is "outside" (phi = -outside_magnitude), so Sigma is a union of closed surfaces inside
 ///    domain().expand(1), and the solid is clipped by the lattice box where it reaches it.
+#include "octree/face_slabs.h"
+
 #include <isodel/volume.h>
 
 #include <openvdb/openvdb.h>
@@ -69,6 +71,12 @@ public:
     /// Smallest voxel edge in world units (length of the shortest index-axis step).
     double min_voxel_edge() const { return min_edge_; }
 
+    /// Sigma' (face_slabs.h): the slabs the mesher's geometric queries (phi_at, segment_crossings,
+    /// cell_function.h) read F through. Default h = 0: F itself. Samples (phi, cell_corners)
+    /// are never affected.
+    const FaceSlabs& face_slabs() const { return slabs_; }
+    void set_face_slabs(const FaceSlabs& slabs) { slabs_ = slabs; }
+
     /// A cheap per-thread reader of phi (owns an OpenVDB ValueAccessor, which is not thread-safe).
     class Reader {
     public:
@@ -103,6 +111,7 @@ private:
     double vmin_, vmax_;
     double outside_magnitude_;
     double min_edge_;
+    FaceSlabs slabs_;
 };
 
 } // namespace isodel::octree

@@ -67,14 +67,10 @@ struct MeshOptions {
     int block_voxels = 0;
     /// Check the surface with isodel's verifier (include/isodel/verify.h: topology against an
     /// independent computation of Sigma's, the eps bound, a closed oriented 2-manifold without
-    /// self-intersections, Delaunay conformity) before returning it. The cut of knife-edge crease
-    /// tips (README, "Two deliberate departures") can change the topology of level sets with a
-    /// saddle very close to v (about 2 in 1000 random 5^3 volumes); when the check fails the
-    /// surface is meshed again with the next of a fixed list of cuts (MeshStats::certify_attempts),
-    /// and when none verifies mesh_isosurface throws GuaranteeViolated saying why: a wrong mesh
-    /// is never returned. So does a reference topology the verifier cannot settle (near-critical
-    /// data). Costs one verification per attempt (about as long as the meshing); with tets, each
-    /// attempt builds them.
+    /// self-intersections, Delaunay conformity) before returning it; when it fails,
+    /// mesh_isosurface throws GuaranteeViolated saying why, so a wrong mesh is never returned.
+    /// So does a reference topology the verifier cannot settle (near-critical data). Costs one
+    /// verification (about as long as the meshing).
     bool certify = false;
 };
 
@@ -141,8 +137,8 @@ struct MeshStats {
     std::vector<ComponentTopology> components;
     TetStats tets;                        ///< filled when MeshOptions::tets != None
     PartitionStats partition;             ///< filled when MeshOptions::block_voxels > 0
-    /// MeshOptions::certify: meshings tried until one verified (1: the default crease cut did);
-    /// 0 without certify.
+    /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. (Until 2026-11-27
+    /// certify re-meshed with other crease cuts, and this counted the attempts.)
     int certify_attempts = 0;
 };
 

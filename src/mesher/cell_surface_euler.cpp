@@ -1,5 +1,7 @@
 #include "mesher/cell_surface_euler.h"
 
+#include "octree/cell_function.h"
+
 #include "octree/cell_interpolant.h"
 
 #include <array>
@@ -112,13 +114,11 @@ int sampled_euler_characteristic(const octree::SampleField::Reader& reader, cons
         const Coord v0(floor_div(i0[0], r), floor_div(i0[1], r), floor_div(i0[2], r));
         const Coord v1(floor_div(i0[0] + n[0] - 1, r), floor_div(i0[1] + n[1] - 1, r), floor_div(i0[2] + n[2] - 1, r));
         const Coord vn = v1 - v0 + Coord(1);
-        std::vector<octree::Trilinear> tri(std::size_t(vn.x()) * vn.y() * vn.z());
+        std::vector<octree::CellFunction> tri(std::size_t(vn.x()) * vn.y() * vn.z());
         for (int z = 0; z < vn.z(); ++z)
             for (int y = 0; y < vn.y(); ++y)
                 for (int x = 0; x < vn.x(); ++x) {
-                    double corner[8];
-                    reader.cell_corners(v0 + Coord(x, y, z), corner);
-                    tri[(std::size_t(z) * vn.y() + y) * vn.x() + x] = octree::Trilinear::from_corners(corner);
+                    tri[(std::size_t(z) * vn.y() + y) * vn.x() + x] = octree::cell_function(reader, v0 + Coord(x, y, z));
                 }
         for (int z = 0; z < n[2]; ++z)
             for (int y = 0; y < n[1]; ++y)

@@ -1,5 +1,7 @@
 #include "mesher/crowding_grid_points.h"
 
+#include "octree/cell_function.h"
+
 #include "mesher/circumcenter.h"
 #include "octree/cell_interpolant.h"
 
@@ -32,24 +34,27 @@ bool voronoi_cell_misses_sigma(const Delaunay& dt, Vertex_handle g, const std::v
     const openvdb::Coord c1(int(std::floor(hi[0])), int(std::floor(hi[1])), int(std::floor(hi[2])));
     if (std::int64_t(c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1) > max_cells) return false;
     const openvdb::Vec3d gi = field.world_to_index({g->point().x(), g->point().y(), g->point().z()});
-    double gc[8];
     const openvdb::Coord gcell(int(std::floor(gi[0])), int(std::floor(gi[1])), int(std::floor(gi[2])));
-    reader.cell_corners(gcell, gc);
-    const bool inside = octree::Trilinear::from_corners(gc)(gi[0] - gcell[0], gi[1] - gcell[1], gi[2] - gcell[2]) >= 0;
-    double corner[8];
+    const bool inside = octree::cell_function(reader, gcell)(gi[0] - gcell[0], gi[1] - gcell[1], gi[2] - gcell[2]) >= 0;
     for (int z = c0[2]; z <= c1[2]; ++z)
         for (int y = c0[1]; y <= c1[1]; ++y)
             for (int x = c0[0]; x <= c1[0]; ++x) {
-                reader.cell_corners(openvdb::Coord(x, y, z), corner);
-                const octree::Trilinear f = octree::Trilinear::from_corners(corner);
+                const octree::CellFunction cf = octree::cell_function(reader, openvdb::Coord(x, y, z));
                 const openvdb::Vec3d base(x, y, z);
-                // The box's part inside this cell, in local coordinates.
+                // The box's part inside this cell, in local coordinates; F' is multilinear on
+                // each of the cell's slab/core boxes, so their corners bound it.
                 const openvdb::Vec3d a = openvdb::math::maxComponent(lo - base, openvdb::Vec3d(0.0));
                 const openvdb::Vec3d b = openvdb::math::minComponent(hi - base, openvdb::Vec3d(1.0));
-                for (int n = 0; n < 8; ++n) {
-                    const double phi = f(n & 1 ? b[0] : a[0], n & 2 ? b[1] : a[1], n & 4 ? b[2] : a[2]);
-                    if ((phi >= 0) != inside) return false;
-                }
+                bool same = true;
+                octree::for_each_piece(cf.slabs(), a, b, [&](int ix, int iy, int iz, const openvdb::Vec3d& pa, const openvdb::Vec3d& pb) {
+                    if (!same) return;
+                    const octree::Trilinear f = cf.piece(ix, iy, iz);
+                    for (int n = 0; n < 8 && same; ++n) {
+                        const double phi = f(n & 1 ? pb[0] : pa[0], n & 2 ? pb[1] : pa[1], n & 4 ? pb[2] : pa[2]);
+                        same = (phi >= 0) == inside;
+                    }
+                });
+                if (!same) return false;
             }
     return true;
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace isodel::mesher {
 namespace {
@@ -51,9 +52,23 @@ struct Polygon {
     }
 };
 
-/// Points where the facet's plane meets grid edges inside the facet, with phi there.
+/// The planes where F' (octree/face_slabs.h) changes its trilinear piece, on one axis, in
+/// [lo, hi]: the grid planes c, or with slabs of half-width h their boundaries c - h and c + h.
+std::vector<double> piece_planes(double lo, double hi, double h)
+{
+    std::vector<double> out;
+    for (int c = int(std::floor(lo)) - 1; c <= int(std::ceil(hi)) + 1; ++c) {
+        const double planes[2] = {c - h, c + h};
+        for (int i = h == 0 ? 1 : 0; i < 2; ++i)
+            if (planes[i] >= lo && planes[i] <= hi) out.push_back(planes[i]);
+    }
+    return out;
+}
+
+/// Points where the facet's plane meets grid edges inside the facet, with phi there. With
+/// slabs, the lines where two slab boundaries meet (F' there is F on the grid edge).
 template <class Visit>
-void grid_edge_points(const Polygon& poly, const Vec3d& lo, const Vec3d& hi, Visit&& visit)
+void grid_edge_points(const Polygon& poly, const Vec3d& lo, const Vec3d& hi, double h, Visit&& visit)
 {
     const auto& P = poly.P;
     const Vec3d& N = poly.N;
@@ -61,8 +76,8 @@ void grid_edge_points(const Polygon& poly, const Vec3d& lo, const Vec3d& hi, Vis
     for (int d = 0; d < 3; ++d) {
         const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
         if (std::abs(N[d]) < 1e-9 * N.length()) continue; // plane parallel to these edges
-        for (int u = int(std::ceil(lo[e1])); u <= int(std::floor(hi[e1])); ++u)
-            for (int v = int(std::ceil(lo[e2])); v <= int(std::floor(hi[e2])); ++v) {
+        for (const double u : piece_planes(lo[e1], hi[e1], h))
+            for (const double v : piece_planes(lo[e2], hi[e2], h)) {
                 Vec3d q;
                 q[e1] = u;
                 q[e2] = v;
@@ -81,6 +96,7 @@ template <class Visit>
 void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon& poly, const Vec3d& lo,
                        const Vec3d& hi, Visit&& visit)
 {
+    const double h = reader.field().face_slabs().h;
     const auto& P = poly.P;
     const Vec3d& N = poly.N;
     const double c = N.dot(P[0]);
@@ -90,7 +106,7 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon&
         ed[d] = 1;
         const Vec3d D = N.cross(ed); // the line's direction: in both planes
         if (D.lengthSqr() < 1e-18 * N.lengthSqr()) continue; // facet parallel to these faces
-        for (int u = int(std::ceil(lo[d])); u <= int(std::floor(hi[d])); ++u) {
+        for (const double u : piece_planes(lo[d], hi[d], h)) {
             // A point of the line: x_d = u, and the facet plane, solved along the larger of e1, e2.
             Vec3d P0(0, 0, 0);
             P0[d] = u;
@@ -114,7 +130,7 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon&
             for (int a : {e1, e2}) {
                 if (D[a] == 0) continue;
                 const double xa = P0[a] + t0 * D[a], xb = P0[a] + t1 * D[a];
-                for (int g = int(std::ceil(std::min(xa, xb))); g <= int(std::floor(std::max(xa, xb))); ++g)
+                for (const double g : piece_planes(std::min(xa, xb), std::max(xa, xb), h))
                     ts.push_back((g - P0[a]) / D[a]);
             }
             std::sort(ts.begin(), ts.end());
@@ -137,7 +153,7 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon&
 }
 
 std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, const octree::SampleField& field,
-                                     const octree::SampleField::Reader& reader, int max_cells, double trim)
+                                     const octree::SampleField::Reader& reader, int max_cells)
 {
     // The Voronoi facet: circumcentres of the cells around the edge, in circulation order.
     // Canonical order (determinism: the same facet gives bit-identical points whichever cell
@@ -216,22 +232,10 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
     // The deepest point of an island.
     std::optional<Vec3d> witness;
     double depth = 0;
-    grid_edge_points(polygon, lo, hi, [&](int axis, const Vec3d& q) {
+    grid_edge_points(polygon, lo, hi, field.face_slabs().h, [&](int, const Vec3d& q) {
         const double phi = octree::phi_at(reader, q);
         const bool q_inside = phi >= 0;
         if (std::abs(phi) <= depth) return;
-        // A witness within `trim` of the crossing on its own grid edge sits in the tip of a
-        // needle of Sigma that ends at that E point (a cone with its apex on the edge): every
-        // plane near the apex cuts it in a loop, at every scale. Those tips are cut like the
-        // crease tips of segment_walk.h (the cut cap is a disk: Sigma's topology is kept).
-        const openvdb::Coord c0(int(std::floor(q[0])), int(std::floor(q[1])), int(std::floor(q[2])));
-        openvdb::Coord c1 = c0;
-        c1[axis] += 1;
-        const double f0 = reader.phi(c0), f1 = reader.phi(c1);
-        if ((f0 >= 0) != (f1 >= 0)) {
-            const double root = c0[axis] + f0 / (f0 - f1);
-            if (std::abs(q[axis] - root) < trim) return;
-        }
         if (!island(q, q_inside)) return;
         depth = std::abs(phi);
         witness = q;
@@ -269,8 +273,7 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
 
 } // namespace
 
-std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::SampleField& field, int max_cells,
-                                             double trim)
+std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::SampleField& field, int max_cells)
 {
     // Sigma meets only Voronoi cells of E/N points (Theorem 3, checked by grid_cell_check), so
     // only facets dual to edges with such an endpoint can hold a loop.
@@ -314,7 +317,7 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     std::vector<std::optional<Candidate>> found(jobs.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size(), 256), [&](const auto& r) {
         const octree::SampleField::Reader reader(field);
-        for (std::size_t i = r.begin(); i != r.end(); ++i) found[i] = check_facet(dt, jobs[i], field, reader, max_cells, trim);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) found[i] = check_facet(dt, jobs[i], field, reader, max_cells);
     });
     std::vector<Candidate> out;
     for (std::size_t i = 0; i < jobs.size(); ++i)

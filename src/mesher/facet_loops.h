@@ -36,9 +36,8 @@ namespace isodel::mesher {
 class FacetLoopScanner {
 public:
     /// Candidates in a deterministic order (by the edge's vertex ids). \p max_cells bounds the
-    /// grid cells a facet may span (the voxel bound); larger facets are skipped. Loops within
-    /// \p trim (index units) of an E point on the same grid edge are needle tips and are cut.
-    std::vector<Candidate> scan(const Delaunay& dt, const octree::SampleField& field, int max_cells, double trim);
+    /// grid cells a facet may span (the voxel bound); larger facets are skipped.
+    std::vector<Candidate> scan(const Delaunay& dt, const octree::SampleField& field, int max_cells);
 
     /// Every vertex inserted into \p dt after the first scan must be reported here.
     void touched(Vertex_handle v) { touched_.push_back(v); }

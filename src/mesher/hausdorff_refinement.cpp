@@ -1,5 +1,7 @@
 #include "mesher/hausdorff_refinement.h"
 
+#include "octree/cell_function.h"
+
 #include "geometry/closest_on_triangle.h"
 
 #include "octree/cell_interpolant.h"
@@ -33,13 +35,11 @@ bool project(const octree::SampleField::Reader& reader, const openvdb::math::Mat
     Vec3d x = field.world_to_index(w0);
     // Newton's steps are short: most stay in the cell they start in, whose corners are kept.
     openvdb::Coord cell(std::numeric_limits<int>::min());
-    octree::Trilinear f{};
+    octree::CellFunction f;
     for (int it = 0; it < 30; ++it) {
         const openvdb::Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
         if (c != cell) {
-            double corner[8];
-            reader.cell_corners(c, corner);
-            f = octree::Trilinear::from_corners(corner);
+            f = octree::cell_function(reader, c);
             cell = c;
         }
         const Vec3d l = x - c.asVec3d();
@@ -337,6 +337,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     const double limit = 0.7 * eps_;
     // Lines every eps/2 (world) on each face; R lines per unit of index.
     const int R = std::clamp(int(std::ceil(2.0 * field_.min_voxel_edge() / eps_)), 2, 64);
+    const octree::FaceSlabs& slabs = field_.face_slabs();
     std::vector<std::vector<Candidate>> found(todo.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 16), [&](const auto& r) {
@@ -368,7 +369,11 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
                             if ((v0 >= 0) == (v1 >= 0)) continue;
                             any = true;
                             const Vec3d l = p0 + (p1 - p0) * (v0 / (v0 - v1)); // F is linear here
-                            const Vec3d w = field_.index_to_world(c.asVec3d() + l);
+                            // Sigma' (face_slabs.h) has this crease at the slab's boundary on
+                            // the cell's side: the same curve, mapped, h inside the cell.
+                            Vec3d m = slabs.from_sample(c.asVec3d() + l);
+                            m[axis] += side == 0 ? slabs.h : -slabs.h;
+                            const Vec3d w = field_.index_to_world(m);
                             const KD::Point_3 q(w[0], w[1], w[2]);
                             // d(q, M) <= d(q, T) for T in M: the triangle nearest to the previous
                             // sample (eps/2 away along the crease) usually passes q too, without a

@@ -18,7 +18,9 @@
 //    there can stand out of M between its vertices. Once every facet passes the two checks above,
 //    the crease curves (Sigma on the faces of the crossed cells, where F is bilinear) are sampled
 //    every eps/2 along lines of the face (F is linear on them: exact roots) and each sample
-//    farther than the threshold from M (AABB tree of M's triangles) is inserted.
+//    farther than the threshold from M (AABB tree of M's triangles) is inserted. The mesher
+//    meshes Sigma' (octree/face_slabs.h), whose creases are these curves mapped to the slab
+//    boundaries h inside each cell; the wall between two copies is 2h long.
 // The threshold is 0.7 eps, leaving the sampling spacing's share of the margin. A facet's
 // verdict depends only on its vertices, so each facet is checked once; a cell's crease samples
 // are checked again only when a triangle nearest to one of them has left M.

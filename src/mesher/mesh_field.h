@@ -14,13 +14,6 @@
 
 namespace isodel::mesher {
 
-/// How knife-edge crease tips are cut (octree/segment_walk.h, CreaseTolerance; README,
-/// "departures"): the defaults, or one of the alternatives MeshOptions::certify falls back to.
-struct CreaseCut {
-    double trim_fraction = 0;       ///< trim = this x eps; 0 = eps/50 (eps/200 after a tie shift)
-    bool critical_edge_guard = true; ///< no cut next to critical grid edges (not after a tie shift)
-};
-
 /// A point of N known before the run: partitioned meshing's blocks hand theirs to the merge.
 struct SeedPoint {
     std::array<double, 3> p; ///< world coordinates
@@ -40,7 +33,6 @@ struct FieldRun {
     std::vector<SeedPoint>* inserted = nullptr;
     /// Which violations this run fixes (by their candidate point); all when empty.
     CandidateFilter keep;
-    CreaseCut crease_cut;
 };
 
 /// The side that is inside: options.inside, else Below for level sets and Above otherwise.

@@ -59,6 +59,21 @@ std::size_t peak_memory_bytes()
 
 mesher::Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
+/// The farthest phi moves a point, in world units: max |T (+-h, +-h, +-h)| (T linear part of
+/// index-to-world). d_H(Sigma', Sigma) is at most this.
+double slab_world_shift(const octree::SampleField& field)
+{
+    const double h = field.face_slabs().h;
+    if (h == 0) return 0.0;
+    double worst = 0;
+    const openvdb::Vec3d o = field.index_to_world(openvdb::Vec3d(0.0));
+    for (int n = 0; n < 8; ++n) {
+        const openvdb::Vec3d d(n & 1 ? h : -h, n & 2 ? h : -h, n & 4 ? h : -h);
+        worst = std::max(worst, (field.index_to_world(d) - o).length());
+    }
+    return worst;
+}
+
 } // namespace
 
 namespace mesher {
@@ -82,13 +97,20 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                         std::size_t(options.threads));
 
-    const octree::SampleField& field = *run.field;
     const octree::AdaptiveGrid* adaptive = run.adaptive;
-    st.effective_isovalue = field.effective_isovalue();
+    st.effective_isovalue = run.field->effective_isovalue();
     std::unique_ptr<octree::AdaptiveGrid::Reader> leaves;
     if (adaptive) leaves = std::make_unique<octree::AdaptiveGrid::Reader>(*adaptive);
-    const double eps = options.eps > 0 ? options.eps : options.eps_voxels * field.min_voxel_edge();
-    st.eps_world = eps;
+    const double eps_user = options.eps > 0 ? options.eps : options.eps_voxels * run.field->min_voxel_edge();
+    st.eps_world = eps_user;
+    // The surface meshed is Sigma' (octree/face_slabs.h): slabs of half-width h = eps/50 around
+    // the grid planes blunt the knife-edge creases, and M within eps - slab_shift of Sigma'
+    // keeps Sigma within eps of M.
+    octree::SampleField field = *run.field;
+    field.set_face_slabs(octree::face_slabs_for_eps(eps_user / field.min_voxel_edge()));
+    const octree::FaceSlabs& slabs = field.face_slabs();
+    const double slab_shift = slab_world_shift(field);
+    const double eps = eps_user - slab_shift;
     const double snap_radius = options.snap ? 0.5 * eps : 0.0; // snap_edge_points.h: eps / 2
 
     // Steps 1-2: E and G.
@@ -142,13 +164,13 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 ++st.snapped;
                 continue;
             }
-            initial.push_back({to_point(field.index_to_world(e.points[i].index_pos)), {id++, PointKind::Edge}});
+            initial.push_back({to_point(field.index_to_world(slabs.from_sample(e.points[i].index_pos))), {id++, PointKind::Edge}});
         }
         auto tubes = thin_tube_points(field, crossed_cells);
         const auto necks = tunnel_shoulder_points(field, crossed_cells);
         tubes.insert(tubes.end(), necks.begin(), necks.end());
         st.n_topology += tubes.size();
-        for (const auto& p : tubes) initial.push_back({to_point(field.index_to_world(p)), {id++, PointKind::Topology}});
+        for (const auto& p : tubes) initial.push_back({to_point(field.index_to_world(slabs.from_sample(p))), {id++, PointKind::Topology}});
         for (const SeedPoint& s : run.seeds) {
             ++(s.kind == PointKind::Geometry ? st.n_geometry : st.n_topology);
             initial.push_back({Point(s.p[0], s.p[1], s.p[2]), {id++, s.kind}});
@@ -226,26 +248,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     // Segment walks count unit cells: a leaf of level l spans 2^l of them per axis.
     const int max_cells_walk = (4 * (adaptive ? 27 : st.bound_n) + 16) << (adaptive ? adaptive->max_level() : 0);
     const double hash_cell = 0.25 * field.min_voxel_edge();
-    // Knife-edge crease tips (octree/segment_walk.h): cut at most trim_fraction * eps of them.
-    // Refining toward a crease costs about (crease length / trim) points, so the cut is as large
-    // as the topology allows: eps/50 (at eps/200, 67251 of molmap's 73344 vertices at eps 0.1
-    // voxel were crease points; at eps/50, 20575). Measured on 300 random volumes (property
-    // test), non-tie seeds failing topology: eps/200 2, eps/50 1, eps/20 2. A tie-shifted isovalue
-    // makes features about d/quantum voxel thin (sample_field.h), which larger cuts erase: on
-    // quantized 5^3 random volumes (seeds 1-20, eps 0.5/0.25/0.1) 1 of 60 runs fails at eps/200
-    // and 3 at eps/50, so those volumes keep eps/200.
-    const bool tie_shifted = field.effective_isovalue() != field.isovalue();
-    octree::CreaseTolerance crease;
-    crease.separation = 1e-4;
-    const double trim_fraction = run.crease_cut.trim_fraction > 0 ? run.crease_cut.trim_fraction : tie_shifted ? 0.005 : 0.02;
-    crease.trim = trim_fraction * eps / field.min_voxel_edge();
-    // No cut next to a critical grid edge (segment_walk.h): both samples within 1 % of the value
-    // range of v. random_n16_s4 then has genus 338 at every eps (340 /
-    // 341 at eps 0.25 / 0.1 with the cut there). Not after a tie shift: every tie sample is then
-    // within 1 % of v, and guarding all of them made quantized random volumes fail more often
-    // (seed 90 at eps 0.5), so those keep the plain cut.
-    crease.critical_edge = tie_shifted || !run.crease_cut.critical_edge_guard ? 0.0 : 0.01 * (field.value_max() - field.value_min());
-    FacetCache cache(crease);
+    FacetCache cache;
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), snap_radius);
     hausdorff.set_filter(run.keep);
     FacetLoopScanner loops;
@@ -296,7 +299,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             if (rep.kind == Violation::None) {
                 // Loops inside Voronoi facets (CBP_VF, second clause): once the cheaper checks pass.
                 const auto tl = Clock::now();
-                rep.candidates = loops.scan(dt, field, max_cells_walk, crease.trim);
+                rep.candidates = loops.scan(dt, field, max_cells_walk);
                 if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  loops %.2f ms\n", 1e3 * since(tl));
                 filter_candidates(rep.candidates, run.keep);
                 if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
@@ -305,7 +308,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 // CBP_VC's last clause: no handle inside one Voronoi cell (voronoi_cell_disks.h).
                 const auto td = Clock::now();
                 VoronoiCellDiskStats ds;
-                rep.candidates = voronoi_cell_disk_violations(dt, field, disk_pending, crease.trim * field.min_voxel_edge(), &ds);
+                rep.candidates = voronoi_cell_disk_violations(dt, field, disk_pending, slabs.h * field.min_voxel_edge(), &ds);
                 if (std::getenv("ISODEL_TRACE"))
                     std::fprintf(stderr, "  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated\n",
                                  1e3 * since(td), ds.certified, ds.sampled, ds.unresolved, rep.candidates.size());
@@ -462,24 +465,17 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
 namespace {
 
 MeshResult mesh_once(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
-                     const MeshOptions& options, Interrupter* interrupter, const CreaseCut& cut)
+                     const MeshOptions& options, Interrupter* interrupter)
 {
     if (options.block_voxels > 0) {
         if (adaptive) throw InvalidInput("partitioned meshing (block_voxels) is for dense grids only");
-        return mesh_partitioned(field, options, interrupter, cut);
+        return mesh_partitioned(field, options, interrupter);
     }
     FieldRun run;
     run.field = &field;
     run.adaptive = adaptive;
-    run.crease_cut = cut;
     return mesh_field(run, options, interrupter);
 }
-
-/// MeshOptions::certify: the crease cuts tried in turn. The default first; then a coarser cut,
-/// no critical-edge guard, a much coarser and a much finer cut. Measured on the random 5^3
-/// volumes the default gets wrong (property seeds 347, 719; held-out plain 28, 120, quantized
-/// 58, 120; 2026-11-26): each of these verified with one of them except plain 28 at eps 0.5.
-const CreaseCut kCertifyCuts[] = {{0, true}, {0.05, true}, {0, false}, {0.2, true}, {0.00125, true}};
 
 /// Why \p r failed verification, in a few words.
 std::string verify_failure(const VerifyReport& r)
@@ -509,44 +505,24 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
     openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
     const Inside inside = inside_side(grid, options);
     const octree::SampleField field(gptr, options.isovalue, inside);
-    if (!options.certify) return mesh_once(field, adaptive, options, interrupter, CreaseCut());
-
-    std::ostringstream failures;
-    int attempt = 0;
-    // After a tie shift the critical-edge guard is off anyway: the cut without it is the default.
-    const bool tie_shifted = field.effective_isovalue() != field.isovalue();
-    for (const CreaseCut& cut : kCertifyCuts) {
-        if (tie_shifted && !cut.critical_edge_guard && cut.trim_fraction == 0) continue;
-        ++attempt;
-        MeshResult r;
-        try {
-            r = mesh_once(field, adaptive, options, interrupter, cut);
-        } catch (const GuaranteeViolated& e) {
-            failures << (attempt > 1 ? "; " : " ") << "attempt " << attempt << ": " << e.what();
-            continue;
-        }
-        const auto t0 = Clock::now();
-        VerifyOptions vo;
-        vo.isovalue = options.isovalue;
-        vo.inside = inside;
-        vo.eps = r.stats.eps_world;
-        const VerifyReport rep = verify_surface(grid, r.surface, vo);
-        const double seconds = since(t0);
-        // Near-critical data whose reference topology no refinement settles: nothing to certify
-        // against, whatever the cut (isodel verify reports it as "undetermined").
-        if (!rep.reference.determined)
-            throw GuaranteeViolated("certify: the reference topology of Sigma stays undetermined (a saddle of F "
-                                    "too close to v for the verifier's refinements); the surface cannot be certified");
-        if (rep.passed()) {
-            r.stats.certify_attempts = attempt;
-            r.stats.seconds["certify"] = seconds;
-            r.stats.seconds["total"] += seconds;
-            return r;
-        }
-        failures << (attempt > 1 ? "; " : " ") << "attempt " << attempt << ": " << verify_failure(rep);
-    }
-    throw GuaranteeViolated("certify: no crease cut gave a mesh that verifies (" + std::to_string(attempt) +
-                            " tried):" + failures.str());
+    MeshResult r = mesh_once(field, adaptive, options, interrupter);
+    if (!options.certify) return r;
+    const auto t0 = Clock::now();
+    VerifyOptions vo;
+    vo.isovalue = options.isovalue;
+    vo.inside = inside;
+    vo.eps = r.stats.eps_world;
+    const VerifyReport rep = verify_surface(grid, r.surface, vo);
+    // Near-critical data whose reference topology no refinement settles: nothing to certify
+    // against (isodel verify reports it as "undetermined").
+    if (!rep.reference.determined)
+        throw GuaranteeViolated("certify: the reference topology of Sigma stays undetermined (a saddle of F "
+                                "too close to v for the verifier's refinements); the surface cannot be certified");
+    if (!rep.passed()) throw GuaranteeViolated("certify: the mesh does not verify: " + verify_failure(rep));
+    r.stats.certify_attempts = 1;
+    r.stats.seconds["certify"] = since(t0);
+    r.stats.seconds["total"] += r.stats.seconds["certify"];
+    return r;
 }
 
 } // namespace

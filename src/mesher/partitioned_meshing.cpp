@@ -96,7 +96,7 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
 }
 
 std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockSpec& block, const MeshOptions& options,
-                                  Interrupter* interrupter, const CreaseCut& crease_cut)
+                                  Interrupter* interrupter)
 {
     openvdb::CoordBBox box = block.box;
     box.intersect(field.domain());
@@ -112,7 +112,6 @@ std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockS
     std::vector<SeedPoint> inserted;
     FieldRun run;
     run.field = &clipped;
-    run.crease_cut = crease_cut;
     run.inserted = &inserted;
     // The block fixes only violations at its core (grown by one voxel, so that what it keeps was
     // refined with its neighbourhood): the collar is there to trap the core's Voronoi cells,
@@ -136,8 +135,7 @@ std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockS
     return owned;
 }
 
-MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter,
-                            const CreaseCut& crease_cut)
+MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
     std::unique_ptr<tbb::global_control> threads;
@@ -158,7 +156,7 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
             BlockInterrupter block_interrupter(shared);
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 try {
-                    points[i] = mesh_block(field, blocks[i], options, &block_interrupter, crease_cut);
+                    points[i] = mesh_block(field, blocks[i], options, &block_interrupter);
                 } catch (const GuaranteeViolated& e) {
                     if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "block %zu: %s\n", i, e.what());
                     // A bound stopped the block: the merge's own loop does its work instead.
@@ -172,7 +170,6 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
 
     FieldRun merge;
     merge.field = &field;
-    merge.crease_cut = crease_cut;
     for (auto& p : points) merge.seeds.insert(merge.seeds.end(), p.begin(), p.end());
     const std::size_t from_blocks = merge.seeds.size();
     MeshResult r = mesh_field(merge, options, interrupter);

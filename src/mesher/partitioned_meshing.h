@@ -60,7 +60,6 @@ std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockS
 
 /// Partitioned DELSURFMESH: blocks concurrently (TBB), then the merge described above.
 /// Output depends on options.block_voxels, never on the thread count.
-MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter,
-                            const CreaseCut& crease_cut = CreaseCut());
+MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter);
 
 } // namespace isodel::mesher

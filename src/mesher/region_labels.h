@@ -8,8 +8,8 @@
 // is that M is a boundary mod 2 (every edge of M in an even number of M's triangles, true for the
 // closed 2-manifold Theorem 1 delivers), and it is checked: a cell reached with two different
 // labels is an inconsistency, thrown as GuaranteeViolated. The sign of F at a Voronoi vertex can
-// disagree with M where a Voronoi edge meets Sigma twice, or at crease tips the restricted facet
-// computation trims (octree/segment_walk.h); tests/mesher/test_volume_mesh.cpp compares the two.
+// disagree with M where a Voronoi edge meets Sigma twice; tests/mesher/test_volume_mesh.cpp
+// compares the two.
 #include "mesher/delaunay.h"
 #include "mesher/restricted_facets.h"
 

@@ -19,8 +19,7 @@ Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 } // namespace
 
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
-                                 const octree::SampleField::Reader& reader, int max_cells,
-                                 const octree::CreaseTolerance& crease)
+                                 const octree::SampleField::Reader& reader, int max_cells)
 {
     FacetRecord rec;
     Cell_handle c0 = f.first;
@@ -38,7 +37,7 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
     const auto& field = reader.field();
     const auto ia = field.world_to_index(to_vdb(a));
     const auto ib = field.world_to_index(to_vdb(b));
-    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells, crease);
+    const octree::SegmentCrossings sc = octree::segment_crossings(reader, ia, ib, max_cells);
     if (sc.overflow) {
         rec.overflow = true;
         return rec;
@@ -129,7 +128,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           auto& reader = readers.local();
                           for (std::size_t i = r.begin(); i != r.end(); ++i)
-                              todo[i].stored->record = compute_facet_record(dt, todo[i].facet, reader, max_cells, crease_);
+                              todo[i].stored->record = compute_facet_record(dt, todo[i].facet, reader, max_cells);
                       });
 
     // The active list changes by the changed keys (destroyed or recomputed facets) and the

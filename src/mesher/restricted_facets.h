@@ -24,8 +24,7 @@ struct FacetRecord {
 
 /// Crossings of the Voronoi edge dual to \p f with Sigma.
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
-                                 const octree::SampleField::Reader& reader, int max_cells,
-                                 const octree::CreaseTolerance& crease);
+                                 const octree::SampleField::Reader& reader, int max_cells);
 
 /// Cache of facet records keyed by vertex ids, maintained incrementally. A facet's Voronoi edge
 /// changes exactly when one of its two cells is replaced, and every cell an insertion destroys
@@ -35,8 +34,7 @@ FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
 /// insert().
 class FacetCache {
 public:
-    /// \p crease: how knife-edge crease tips are cut (octree/segment_walk.h).
-    explicit FacetCache(const octree::CreaseTolerance& crease) : crease_(crease) {}
+    FacetCache() = default;
 
     /// First call: scans every finite facet with a surface vertex. Later calls: only the facets
     /// around the points inserted since. Records are computed in parallel; each depends only on
@@ -110,7 +108,6 @@ private:
         Facet facet;
         FacetRecord record;
     };
-    octree::CreaseTolerance crease_;
     FacetTable<Stored> map_;
     std::vector<Vertex_handle> inserted_;
     struct InsertScratch {

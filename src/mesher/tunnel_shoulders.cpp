@@ -85,8 +85,12 @@ void shoulders(const octree::Trilinear& f, const Vec3d& s, const Vec3d& cell_ori
                 // crossing there the point is dropped as before.
                 const int kMaxRayCells = 8;
                 const Vec3d ray_start = cell_origin + s, ray_end = cell_origin + s + 2.0 * (y - s);
-                const auto crossings = octree::segment_crossings(reader, ray_start, ray_end, kMaxRayCells);
-                if (!crossings.t.empty()) out.push_back(ray_start + crossings.t.front() * (ray_end - ray_start));
+                // The walk reads F' (face_slabs.h) in mesh space: walk the ray's image there and
+                // return the crossing's sample-space point, like the others.
+                const octree::FaceSlabs& slabs = reader.field().face_slabs();
+                const Vec3d a = slabs.from_sample(ray_start), b = slabs.from_sample(ray_end);
+                const auto crossings = octree::segment_crossings(reader, a, b, kMaxRayCells);
+                if (!crossings.t.empty()) out.push_back(slabs.to_sample(a + crossings.t.front() * (b - a)));
             }
         }
     }

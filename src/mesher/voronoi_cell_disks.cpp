@@ -1,5 +1,7 @@
 #include "mesher/voronoi_cell_disks.h"
 
+#include "octree/cell_function.h"
+
 #include "mesher/cell_surface_euler.h"
 #include "mesher/circumcenter.h"
 #include "octree/cell_interpolant.h"
@@ -42,7 +44,7 @@ public:
     {
         const Vec3d pi = field_.world_to_index(p_);
         const Coord pc(int(std::floor(pi[0])), int(std::floor(pi[1])), int(std::floor(pi[2])));
-        return cell_trilinear(pc).gradient(pi[0] - pc.x(), pi[1] - pc.y(), pi[2] - pc.z());
+        return octree::cell_function(reader_, pc).gradient(pi[0] - pc.x(), pi[1] - pc.y(), pi[2] - pc.z());
     }
 
     /// Runs the certificate for direction \p d on the index-space box [lo, hi] (the bounding
@@ -68,7 +70,11 @@ public:
                         b[k] = std::min(hi[k] - o[k], 1.0);
                     }
                     if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) continue;
-                    box(cell_trilinear(c), c, a, b, 0);
+                    // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
+                    const octree::CellFunction cf = octree::cell_function(reader_, c);
+                    octree::for_each_piece(cf.slabs(), a, b, [&](int ix, int iy, int iz, const Vec3d& pa, const Vec3d& pb) {
+                        if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2]) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
+                    });
                 }
     }
 
@@ -78,13 +84,6 @@ public:
     const std::vector<Vec3d>& leaf_normals() const { return normals_; }
 
 private:
-    octree::Trilinear cell_trilinear(const Coord& c) const
-    {
-        double corner[8];
-        reader_.cell_corners(c, corner);
-        return octree::Trilinear::from_corners(corner);
-    }
-
     void box(const octree::Trilinear& f, const Coord& cell, const Vec3d& lo, const Vec3d& hi, int depth)
     {
         if (++boxes_ > kMaxBoxes) {
@@ -241,12 +240,11 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
             // Not a graph over any direction tried (a fold, the tip of a thin tube, a blob around
             // one sample): count the topology of a sample instead. chi = sum over components of
             // 2 - 2 genus - boundaries, so chi < 0 means a handle (or a component with three or
-            // more boundary curves); chi 0 and 2 are the two-boundary and two-component pieces
-            // that knife-edge crease cuts leave (octree/segment_walk.h), which the other checks
-            // own. On 1hpv_molmap at eps 0.25 (boxes to 1/32 voxel then), 4141 of 17113 cells
-            // needed the sample: 3508 had chi 1, 359 chi 0, 274 chi 2, none negative; inserting
-            // for chi != 1 refined those creases and broke 5 of 1000 random volumes that were
-            // right before. A handle the sample shows but no point can split (none found in the
+            // more boundary curves); chi 0 and 2 (two boundaries, two components) pass, left to
+            // the other checks. Measured under the crease cut that came before the face slabs
+            // (2026-11-26): on 1hpv_molmap at eps 0.25, 4141 of 17113 cells needed the sample:
+            // 3508 had chi 1, 359 chi 0, 274 chi 2, none negative; inserting for chi != 1 then
+            // broke 5 of 1000 random volumes (not measured again on Sigma'). A handle the sample shows but no point can split (none found in the
             // cell, or the cell under min_extent) stays pending and counts as unresolved.
             const int chi = sampled_euler_characteristic(reader, planes, geo[i].lo, geo[i].hi, kEulerSamplesPerVoxel);
             if (chi >= 0) {

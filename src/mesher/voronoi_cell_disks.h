@@ -25,8 +25,7 @@
 // every direction tried, the tip of a thin tube, a blob around one sample: on 1hpv_molmap at
 // eps 0.25 a quarter of the cells) gets its Euler characteristic counted on a sample of Sigma
 // at 1/16 voxel (cell_surface_euler.h). chi < 0 is a handle: a violation. chi >= 0 passes
-// (chi 0 and 2 are pieces that the crease cut of octree/segment_walk.h leaves, owned by the
-// other checks).
+// (chi 0 and 2 are left to the other checks; see voronoi_cell_disks.cpp).
 //
 // Limits: the sample misses handles thinner than 1/16 voxel, and a handle beside a second
 // piece in the same cell (chi -1 + 1 = 0).
@@ -54,7 +53,7 @@ struct VoronoiCellDiskStats {
 /// cell is not certified and keeps exactly the uncertified vertices in \p pending (newly
 /// inserted surface vertices must be appended by the caller). A Voronoi cell reaching less than
 /// \p min_extent (world) from its site is not refined further: it counts as unresolved (the
-/// bound that keeps knife-edge creases from refining forever, like the crease cut's trim).
+/// mesher passes the face slabs' half-width: Sigma' has no wedge sharper than that scale).
 std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const octree::SampleField& field,
                                                     std::vector<Vertex_handle>& pending, double min_extent,
                                                     VoronoiCellDiskStats* stats = nullptr);

@@ -1,9 +1,8 @@
 // MeshOptions::certify (isodel mesh --certify): the surface is checked by the verifier before it
-// is returned; when the check fails it is meshed again with the next crease cut of a fixed list,
-// and when none verifies mesh_isosurface throws GuaranteeViolated. These tests pin down that a
-// certified run never returns a mesh that fails verification, that it retries where the default
-// cut is wrong (random volumes of the property test and the held-out sweep, see README "Known
-// gaps"), and that it changes nothing where the default cut is right.
+// is returned, and a surface that fails the check, or a run stopped by one of its bounds, is
+// refused with GuaranteeViolated. These tests pin down that a certified run returns exactly the
+// uncertified mesh when it verifies (volumes the crease cut before the face slabs got wrong
+// among them) and that a refused run says why.
 #include <catch2/catch.hpp>
 
 #include "mesher_test_support.h"
@@ -27,65 +26,36 @@ MeshOptions options_at(double eps_voxels, bool certify)
     return mo;
 }
 
-/// Meshes \p grid with certify on. Either the result verifies (independently of the mesher's own
-/// check) and the number of attempts is consistent with the default cut's own verdict, or the
-/// run throws GuaranteeViolated naming every attempt. Returns the attempts (0 = threw).
-int certified_or_refused(const openvdb::FloatGrid& grid, double eps_voxels)
-{
-    const auto plain = testing::mesh_and_verify(grid, options_at(eps_voxels, false));
-    INFO("default cut: " << plain.report.summary());
-    testing::MeshAndVerify c;
-    try {
-        c = testing::mesh_and_verify(grid, options_at(eps_voxels, true));
-    } catch (const GuaranteeViolated& e) {
-        const std::string what = e.what();
-        INFO(what);
-        CHECK(!plain.report.passed()); // the first attempt is the default cut
-        CHECK(what.find("certify") != std::string::npos);
-        CHECK(what.find("attempt 5") != std::string::npos);
-        return 0;
-    }
-    const MeshResult& r = c.mesh;
-    INFO("certified: " << c.report.summary());
-    CHECK(c.report.passed());
-    if (plain.report.passed()) {
-        CHECK(r.stats.certify_attempts == 1);
-        CHECK(r.surface.vertices == plain.mesh.surface.vertices);
-        CHECK(r.surface.triangles == plain.mesh.surface.triangles);
-    } else {
-        CHECK(r.stats.certify_attempts > 1);
-    }
-    return r.stats.certify_attempts;
-}
-
 } // namespace
 
-TEST_CASE("certify: volumes the default crease cut gets wrong are meshed again and verify", "[mesher][certify]")
+TEST_CASE("certify: a mesh that verifies comes back unchanged, counted as verified", "[mesher][certify]")
 {
-    // Property seeds 347 (a thin plate on a ridge face) and 719 (a critical grid edge), eps 0.5:
-    // measured 2026-11-26, the default cut gives genus 4 for 3 and 1 for 0; the second and third
-    // cuts of the list verify.
-    for (const unsigned seed : {347u, 719u}) {
-        INFO("property seed " << seed);
-        CHECK(certified_or_refused(*testing::random_volume(5, seed, false), 0.5) > 1);
+    // Property seeds 347 and 719 (plain, n 5; wrong under the old crease cut), plain 7, and a
+    // quantized n 4 volume at eps 0.25.
+    const struct {
+        int n;
+        unsigned seed;
+        bool quantized;
+        double eps;
+    } cases[] = {{5, 347, false, 0.5}, {5, 719, false, 0.5}, {5, 7, false, 0.5}, {4, 10, true, 0.25}};
+    for (const auto& c : cases) {
+        INFO("n " << c.n << " seed " << c.seed << (c.quantized ? " quantized" : "") << " eps " << c.eps);
+        const auto grid = testing::random_volume(c.n, c.seed, c.quantized);
+        const auto plain = testing::mesh_and_verify(*grid, options_at(c.eps, false));
+        INFO(plain.report.summary());
+        CHECK(plain.report.passed());
+        const auto certified = testing::mesh_and_verify(*grid, options_at(c.eps, true));
+        CHECK(certified.report.passed());
+        CHECK(certified.mesh.stats.certify_attempts == 1);
+        CHECK(plain.mesh.stats.certify_attempts == 0);
+        CHECK(certified.mesh.surface.vertices == plain.mesh.surface.vertices);
+        CHECK(certified.mesh.surface.triangles == plain.mesh.surface.triangles);
+        CHECK(certified.mesh.stats.seconds.count("certify") == 1);
     }
 }
 
-TEST_CASE("certify: a volume the default cut meshes rightly comes back unchanged after one attempt",
-          "[mesher][certify]")
+TEST_CASE("certify: a run stopped by a bound is refused and says which", "[mesher][certify]")
 {
-    CHECK(certified_or_refused(*testing::random_volume(5, 7, false), 0.5) == 1);
-    CHECK(certified_or_refused(*testing::random_volume(4, 10, true), 0.25) == 1);
-}
-
-TEST_CASE("certify: where no cut of the list verifies, meshing fails and says why", "[mesher][certify]")
-{
-    // Held-out random volume 28 (plain) at eps 0.5: a face saddle 2e-4 above v on a ridge face;
-    // every cut of the list gave the wrong genus (2026-11-26). Whatever a later mesher does here,
-    // a certified run must not return a mesh that fails verification.
-    certified_or_refused(*testing::random_volume(5, 28, false), 0.5);
-
-    // Every attempt stopped by the point bound: the error names the bound of each attempt.
     MeshOptions mo = options_at(0.5, true);
     mo.max_points = 1;
     try {
@@ -94,7 +64,6 @@ TEST_CASE("certify: where no cut of the list verifies, meshing fails and says wh
     } catch (const GuaranteeViolated& e) {
         const std::string what = e.what();
         INFO(what);
-        CHECK(what.find("attempt 1: refinement stopped by the point bound") != std::string::npos);
-        CHECK(what.find("attempt 5: refinement stopped by the point bound") != std::string::npos);
+        CHECK(what.find("point bound") != std::string::npos);
     }
 }

@@ -197,7 +197,9 @@ TEST_CASE("volume mesh: flood-fill labels agree with the sign of F at the circum
     // Labels are decided on the Delaunay tets (the improvement only keeps them).
     const auto grid = sphere_grid();
     const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Both, 0, /*improve=*/false);
-    const octree::SampleField field(grid, 0.0, Inside::Above);
+    // The mesher meshes Sigma' (octree/face_slabs.h): F read through its slabs at eps 0.5 voxel.
+    octree::SampleField field(grid, 0.0, Inside::Above);
+    field.set_face_slabs(octree::face_slabs_for_eps(0.5));
     const octree::SampleField::Reader reader(field);
     std::size_t disagree = 0;
     for (std::size_t i = 0; i < r.tets.tets.size(); ++i) {

@@ -13,7 +13,7 @@ using namespace isodel::octree;
 
 namespace {
 
-struct Trilinear {
+struct ReferenceTrilinear {
     std::array<double, 8> f;
     double operator()(double x, double y, double z) const
     {
@@ -38,7 +38,7 @@ struct Trilinear {
 
 /// Critical points found independently: Newton on grad F from a 4^3 grid of starts (the Hessian
 /// of a trilinear function is linear in each coordinate), kept when they converge inside.
-std::vector<std::array<double, 3>> newton_critical_points(const Trilinear& F)
+std::vector<std::array<double, 3>> newton_critical_points(const ReferenceTrilinear& F)
 {
     std::vector<std::array<double, 3>> found;
     for (int s = 0; s < 64; ++s) {
@@ -96,7 +96,7 @@ TEST_CASE("critical values: cell critical points equal those found by Newton's m
     std::uniform_real_distribution<double> U(-1, 1);
     int cells_with_points = 0, two_points = 0;
     for (int t = 0; t < 3000; ++t) {
-        Trilinear F;
+        ReferenceTrilinear F;
         for (double& v : F.f) v = U(rng);
         if (t % 7 == 0) F.f[7] = F.f[6] + F.f[5] + F.f[3] - F.f[4] - F.f[2] - F.f[1] + F.f[0]; // a7 = 0
         CellCritical pts[2];

@@ -1,19 +1,19 @@
 // cbp_audit: how closely the mesher's final point set satisfies the closed ball property for the
-// exact Sigma, i.e. without the knife-edge crease cut (octree/segment_walk.h). A diagnostic for
+// surface it meshes, Sigma' (octree/face_slabs.h, with the mesher's slabs for --eps-voxels; the
+// slab width can be overridden with --slab H, 0 = the trilinear Sigma itself). A diagnostic for
 // mesher work, not a certificate (`isodel verify` is that): it meshes the volume, rebuilds
 // Del(E u G u N) of the final points with exact circumcentres, walks every finite Voronoi edge
-// with no crease tolerance, and samples every Voronoi facet on a RES x RES lattice.
+// and samples every Voronoi facet on a RES x RES lattice.
 //
-//   cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--res 40] [--cell-res 0] [--points OUT.xyz] [--show 10]
+//   cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--slab H] [--res 40] [--cell-res 0] [--points OUT.xyz] [--show 10]
 //
 // Prints (index coordinates): Voronoi edges crossing Sigma more than once (CBP_VE), facets whose
 // boundary crosses Sigma more than twice (CBP_VF) or whose interior holds a sampled island of
 // the other sign (a loop), and facets of M whose Voronoi edge has an odd/even count that
-// disagrees with M (parity, which the cut cannot change). Only finite Voronoi edges and bounded
-// facets within the voxel bound (extent <= 8 voxels) are examined. Violations where the mesher
-// cut crossings (pairs within eps/50 of a crease curve, eps/200 after a tie shift; see
-// mesh_isosurface.cpp) are expected; anything else, and any parity mismatch, is a mesher defect.
-// The tool does not classify them: read the coordinates. Exit 0 when nothing is found.
+// disagrees with M (parity). Only finite Voronoi edges and bounded facets within the voxel bound
+// (extent <= 8 voxels) are examined. Any violation of Sigma' is a mesher defect (with --slab 0,
+// the ones next to knife-edge creases are expected). The tool does not classify them: read the
+// coordinates. Exit 0 when nothing is found.
 // With --cell-res R > 0 it also counts the Euler characteristic of Sigma in the Voronoi cell of
 // every vertex of M at 1/R voxel and prints the cells with a handle (chi < 0). With --points it
 // writes the final point set (x y z per line).
@@ -72,11 +72,11 @@ int main(int argc, char** argv)
 {
     if (argc < 2) {
         std::fprintf(stderr,
-                     "usage: cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--res 40] [--show 10]\n");
+                     "usage: cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--slab H] [--res 40] [--show 10]\n");
         return 2;
     }
     const std::string input = argv[1];
-    double iso = 0, eps = 0.5;
+    double iso = 0, eps = 0.5, slab = -1;
     bool have_iso = false;
     int res = 40, show = 10, cell_res = 0;
     std::string points_out;
@@ -91,6 +91,8 @@ int main(int argc, char** argv)
                     iso = std::stod(v), have_iso = true;
                 else if (a == "--eps-voxels")
                     eps = std::stod(v);
+                else if (a == "--slab")
+                    slab = std::stod(v);
                 else if (a == "--inside")
                     inside = v;
                 else if (a == "--res")
@@ -139,7 +141,8 @@ int main(int argc, char** argv)
                 std::fprintf(f, "%.17g %.17g %.17g\n", q[0], q[1], q[2]);
             std::fclose(f);
         }
-        const isodel::octree::SampleField field(vol.grid, iso, side);
+        isodel::octree::SampleField field(vol.grid, iso, side);
+        field.set_face_slabs(slab >= 0 ? isodel::octree::FaceSlabs{slab} : isodel::octree::face_slabs_for_eps(eps));
         const isodel::octree::SampleField::Reader reader(field);
         auto idx = [&](const P3& p) { return field.world_to_index(V3(p.x(), p.y(), p.z())); };
 
@@ -274,7 +277,7 @@ int main(int argc, char** argv)
         }
         // Voronoi cells of M's vertices: the Euler characteristic of Sigma n Vor(p), sampled at
         // 1/CELL_RES voxel (mesher/cell_surface_euler.h). A disk has 1; chi < 0 is a handle,
-        // which CBP_VC's one-cycle test cannot see (chi 0 and 2 are pieces crease cuts leave).
+        // which CBP_VC's one-cycle test cannot see.
         int vc = 0, cells = 0;
         std::set<int> on_mesh;
         for (const auto& k : in_mesh)

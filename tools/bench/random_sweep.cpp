@@ -8,8 +8,8 @@
 //
 //   random_sweep [--n 5] [--seeds 21-100] [--eps-voxels 0.5,0.25,0.1] [--kinds plain,quantized]
 //                [--threads 1] [--certify 0|1]
-// With --certify 1 each run is MeshOptions::certify (a failed verification is meshed again with
-// the next crease cut); a run it refuses (GuaranteeViolated) is listed as "(error)".
+// With --certify 1 each run is MeshOptions::certify (verified before it is returned); a run it
+// refuses (GuaranteeViolated) is listed as "(error)".
 // The volumes are the property test's (testing::random_volume in tests/verify/
 // verify_test_support.h, which must stay identical: seeds named in tests and the README refer
 // to it): n^3 uniform samples in [-1, 1] drawn from std::mt19937(seed) in x-fastest order,

@@ -63,8 +63,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--certify", o->certify,
                   "Verify the surface before writing it (topology against an independent computation, eps, "
-                  "manifold, Delaunay); if it fails, mesh again with other crease cuts; exit 1 and write "
-                  "nothing if none verifies");
+                  "manifold, Delaunay); exit 1 and write nothing if it fails");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->callback([o, &exit_code] {
         if (!(o->eps >= 0) || !(o->eps_voxels > 0)) throw InvalidInput("--eps/--eps-voxels must be positive");
@@ -129,7 +128,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
             for (const auto& c : res.stats.components) std::cerr << ' ' << c.genus;
             std::cerr << ")";
             if (res.stats.certify_attempts > 0)
-                std::cerr << ", verified (crease cut " << res.stats.certify_attempts << " of the list)";
+                std::cerr << ", verified";
             std::cerr << "\n";
             if (!o->tets.empty()) {
                 const TetStats& t = res.stats.tets;
