@@ -7,7 +7,7 @@
 /// (it grows away from the face on both sides) and a small gradient along it, Sigma's two sheets
 /// meet along the face at an arbitrarily small dihedral angle: a knife-edge fin. A wedge is scale
 /// invariant, so Voronoi edges near its edge cross both sheets at every scale and the closed ball
-/// refinement never ends. Until 2026-11-27 the mesher cut such pairs of crossings per Voronoi
+/// refinement never ends. Until 2026-11-26 the mesher cut such pairs of crossings per Voronoi
 /// edge (a rule, not a surface: different checks saw different surfaces, and 2-6 in 1000 random
 /// volumes got the wrong topology).
 ///

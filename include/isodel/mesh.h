@@ -137,7 +137,7 @@ struct MeshStats {
     std::vector<ComponentTopology> components;
     TetStats tets;                        ///< filled when MeshOptions::tets != None
     PartitionStats partition;             ///< filled when MeshOptions::block_voxels > 0
-    /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. (Until 2026-11-27
+    /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. (Until 2026-11-26
     /// certify re-meshed with other crease cuts, and this counted the attempts.)
     int certify_attempts = 0;
 };

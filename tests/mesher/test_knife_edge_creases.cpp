@@ -3,7 +3,7 @@
 // mesher meshes Sigma' = {F o phi = v} (octree/face_slabs.h), whose slabs blunt every such wedge,
 // and verify checks M against Sigma itself. Each volume below is one the crease cut that came
 // before the slabs (a rule per Voronoi edge cancelling pairs of crossings near a grid plane,
-// until 2026-11-27) got wrong or could only get right with a guard that broke another; the
+// until 2026-11-26) got wrong or could only get right with a guard that broke another; the
 // genera are verify's reference (brute force at R = 128 where noted).
 #include <catch2/catch.hpp>
 
