@@ -26,6 +26,12 @@ public:
         for (int k = 0; k < 3; ++k) g[k] *= slope(l[k]);
         return g;
     }
+    /// grad F at phi(x) (sample-space local coordinates): a direction where grad F' vanishes
+    /// because x lies in a corner box (F' constant there).
+    openvdb::math::Vec3d sample_gradient(double x, double y, double z) const
+    {
+        return f_.gradient(s_.local(x), s_.local(y), s_.local(z));
+    }
     /// F' on box (ix, iy, iz) (FaceSlabs::piece_of per axis) as a trilinear in the cell's local
     /// coordinates: f(alpha x + beta) with alpha, beta of that box per axis. With h = 0, f.
     Trilinear piece(int ix, int iy, int iz) const;

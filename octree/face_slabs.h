@@ -24,8 +24,9 @@
 ///    [-h, h]) and each E point into a square; where Sigma crosses the faces and edges
 ///    transversally (always, after the tie rule of sample_field.h moves v off the face saddles)
 ///    that is a homeomorphism.
-///  - Close: |x - phi(x)| <= h per axis, so d_H(Sigma', Sigma) <= |T (h, h, h)| in world units
-///    (T the index-to-world map); the mesher meshes Sigma' within eps minus that.
+///  - Close: |x - phi(x)| <= h per axis, so d_H(Sigma', Sigma) <= max |T (+-h, +-h, +-h)| in
+///    world units (T the linear part of index-to-world; SampleField::face_slab_shift); the
+///    mesher meshes Sigma' within eps minus that.
 /// h = 0 is the identity: F' = F.
 #include <openvdb/math/Vec3.h>
 

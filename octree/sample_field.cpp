@@ -114,6 +114,17 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
         const Vec3d w = xf.indexToWorld(e) - xf.indexToWorld(Vec3d(0.0));
         min_edge_ = std::min(min_edge_, w.length());
     }
+    for (int n = 0; n < 8; ++n) {
+        const Vec3d d(n & 1 ? 1.0 : -1.0, n & 2 ? 1.0 : -1.0, n & 4 ? 1.0 : -1.0);
+        unit_slab_shift_ = std::max(unit_slab_shift_, (xf.indexToWorld(d) - xf.indexToWorld(Vec3d(0.0))).length());
+    }
+}
+
+FaceSlabs SampleField::face_slabs_for_eps_world(double eps) const
+{
+    FaceSlabs s = face_slabs_for_eps(eps / min_edge_);
+    if (unit_slab_shift_ > 0) s.h = std::min(s.h, kMaxSlabShift * eps / unit_slab_shift_);
+    return s;
 }
 
 SampleField::SampleField(const SampleField& parent, const CoordBBox& clip) : SampleField(parent)

@@ -76,6 +76,15 @@ public:
     /// are never affected.
     const FaceSlabs& face_slabs() const { return slabs_; }
     void set_face_slabs(const FaceSlabs& slabs) { slabs_ = slabs; }
+    /// The farthest phi moves a point, in world units: max |T (+-h, +-h, +-h)| over the sign
+    /// combinations (T the linear part of index-to-world). d_H(Sigma', Sigma) is at most this.
+    double face_slab_shift() const { return slabs_.h * unit_slab_shift_; }
+    /// The mesher's slabs for a Hausdorff bound \p eps (world units): face_slabs_for_eps in
+    /// smallest voxel edges, narrowed where elongated or sheared voxels would move Sigma' more
+    /// than kMaxSlabShift x eps (0.035 eps: never on a cubic lattice, where the shift is
+    /// sqrt(3) eps / 50).
+    FaceSlabs face_slabs_for_eps_world(double eps) const;
+    static constexpr double kMaxSlabShift = 0.035;
 
     /// A cheap per-thread reader of phi (owns an OpenVDB ValueAccessor, which is not thread-safe).
     class Reader {
@@ -111,6 +120,7 @@ private:
     double vmin_, vmax_;
     double outside_magnitude_;
     double min_edge_;
+    double unit_slab_shift_ = 0; ///< face_slab_shift() per unit of h
     FaceSlabs slabs_;
 };
 

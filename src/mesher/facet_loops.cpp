@@ -135,16 +135,16 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon&
             }
             std::sort(ts.begin(), ts.end());
             for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
-                const double h = 0.5 * (ts[i + 1] - ts[i]);
-                if (!(h > 1e-12)) continue;
-                const double tm = ts[i] + h;
+                const double half = 0.5 * (ts[i + 1] - ts[i]);
+                if (!(half > 1e-12)) continue;
+                const double tm = ts[i] + half;
                 const Vec3d pm = P0 + tm * D;
                 const double f0 = octree::phi_at(reader, P0 + ts[i] * D), fm = octree::phi_at(reader, pm),
                              f1 = octree::phi_at(reader, P0 + ts[i + 1] * D);
-                const double alpha = (f0 - 2 * fm + f1) / (2 * h * h), beta = (f1 - f0) / (2 * h);
+                const double alpha = (f0 - 2 * fm + f1) / (2 * half * half), beta = (f1 - f0) / (2 * half);
                 if (alpha == 0) continue;
                 const double x = -beta / (2 * alpha);
-                if (!(std::abs(x) < h)) continue;
+                if (!(std::abs(x) < half)) continue;
                 const Vec3d q = pm + x * D;
                 if (poly.strictly_inside(q)) visit(q);
             }

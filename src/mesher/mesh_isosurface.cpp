@@ -59,21 +59,6 @@ std::size_t peak_memory_bytes()
 
 mesher::Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
-/// The farthest phi moves a point, in world units: max |T (+-h, +-h, +-h)| (T linear part of
-/// index-to-world). d_H(Sigma', Sigma) is at most this.
-double slab_world_shift(const octree::SampleField& field)
-{
-    const double h = field.face_slabs().h;
-    if (h == 0) return 0.0;
-    double worst = 0;
-    const openvdb::Vec3d o = field.index_to_world(openvdb::Vec3d(0.0));
-    for (int n = 0; n < 8; ++n) {
-        const openvdb::Vec3d d(n & 1 ? h : -h, n & 2 ? h : -h, n & 4 ? h : -h);
-        worst = std::max(worst, (field.index_to_world(d) - o).length());
-    }
-    return worst;
-}
-
 } // namespace
 
 namespace mesher {
@@ -105,11 +90,11 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     st.eps_world = eps_user;
     // The surface meshed is Sigma' (octree/face_slabs.h): slabs of half-width h = eps/50 around
     // the grid planes blunt the knife-edge creases, and M within eps - slab_shift of Sigma'
-    // keeps Sigma within eps of M.
+    // keeps Sigma within eps of M (slab_shift <= 0.035 eps).
     octree::SampleField field = *run.field;
-    field.set_face_slabs(octree::face_slabs_for_eps(eps_user / field.min_voxel_edge()));
+    field.set_face_slabs(field.face_slabs_for_eps_world(eps_user));
     const octree::FaceSlabs& slabs = field.face_slabs();
-    const double slab_shift = slab_world_shift(field);
+    const double slab_shift = field.face_slab_shift();
     const double eps = eps_user - slab_shift;
     const double snap_radius = options.snap ? 0.5 * eps : 0.0; // snap_edge_points.h: eps / 2
 
@@ -249,7 +234,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     const int max_cells_walk = (4 * (adaptive ? 27 : st.bound_n) + 16) << (adaptive ? adaptive->max_level() : 0);
     const double hash_cell = 0.25 * field.min_voxel_edge();
     FacetCache cache;
-    HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), snap_radius);
+    // A snapped grid point is within snap_radius of Sigma, and Sigma' within slab_shift of it.
+    HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), options.snap ? snap_radius + slab_shift : 0.0);
     hausdorff.set_filter(run.keep);
     FacetLoopScanner loops;
     ViolationFinder violations;

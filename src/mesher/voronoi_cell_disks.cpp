@@ -24,8 +24,8 @@ using openvdb::Vec3d;
 constexpr int kMaxDepth = 4;
 constexpr std::size_t kMaxBoxes = 1 << 14;
 /// A failed direction is replaced by the axis of the normals seen so far, up to kDirections
-/// times: a sharp crease (F is only C0 across cell faces) is a graph over the plane normal to
-/// the bisector of its two sheets, not over the tangent plane of either.
+/// times: a crease (F' is only C0 across the slab boundaries, at 90 degrees or more) is a graph
+/// over the plane normal to the bisector of its two sheets, not over the tangent plane of either.
 constexpr int kDirections = 4;
 constexpr std::size_t kMaxNormals = 256;
 /// Sub-lattice of the Euler characteristic fallback (cell_surface_euler.h).
@@ -39,12 +39,17 @@ public:
     {
     }
 
-    /// grad F at p, index space (zero at a critical point on Sigma).
+    /// grad F' at p, index space (zero at a critical point on Sigma'). A snapped grid point
+    /// (--snap) lies in a corner box of the face slabs, where F' is constant: there the
+    /// direction to start from is grad F at the sample.
     Vec3d normal_at_p() const
     {
         const Vec3d pi = field_.world_to_index(p_);
         const Coord pc(int(std::floor(pi[0])), int(std::floor(pi[1])), int(std::floor(pi[2])));
-        return octree::cell_function(reader_, pc).gradient(pi[0] - pc.x(), pi[1] - pc.y(), pi[2] - pc.z());
+        const octree::CellFunction cf = octree::cell_function(reader_, pc);
+        const Vec3d l = pi - pc.asVec3d();
+        const Vec3d g = cf.gradient(l[0], l[1], l[2]);
+        return g.lengthSqr() > 0 ? g : cf.sample_gradient(l[0], l[1], l[2]);
     }
 
     /// Runs the certificate for direction \p d on the index-space box [lo, hi] (the bounding

@@ -168,7 +168,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
         double bestd = 1e300;
         // Vertices of the refined triangles on axis-aligned sub-lattice edges are on Sigma (F is
         // linear along an axis line inside a cell), so the nearest one bounds dist(p, Sigma) above
-        // when the projection below does not converge (e.g. near a cut needle tip).
+        // when the projection below does not converge (e.g. where F is flat).
         double vertex_bound = 1e300;
         for (int k = int(std::floor(lo[2])); k <= int(std::floor(hi[2])); ++k)
             for (int j = int(std::floor(lo[1])); j <= int(std::floor(hi[1])); ++j)

@@ -138,3 +138,29 @@ TEST_CASE("face slabs: the segment walk finds every sign change of F' (dense sam
         CHECK(with_roots > 100);
     }
 }
+
+TEST_CASE("face slabs: the mesher's slab width keeps Sigma' within 0.035 eps of Sigma on any lattice", "[octree][face_slabs]")
+{
+    auto grid = random_grid(9, 3);
+    // Cubic voxels of edge 0.5: h = eps / 50 in voxels, shift sqrt(3) h voxel edges.
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.5));
+    {
+        SampleField field(grid, 0.0, isodel::Inside::Above);
+        const double eps = 0.25; // world: half a voxel
+        field.set_face_slabs(field.face_slabs_for_eps_world(eps));
+        CHECK(field.face_slabs().h == Approx(0.01));
+        CHECK(field.face_slab_shift() == Approx(std::sqrt(3.0) * 0.01 * 0.5));
+        CHECK(field.face_slab_shift() <= SampleField::kMaxSlabShift * eps);
+    }
+    // Voxels 1 x 1 x 50: eps/50 in the smallest edge would move Sigma' by ~eps along z; the
+    // slabs narrow instead.
+    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+    m.setToScale(openvdb::Vec3d(1, 1, 50));
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(m));
+    SampleField field(grid, 0.0, isodel::Inside::Above);
+    const double eps = 0.5;
+    field.set_face_slabs(field.face_slabs_for_eps_world(eps));
+    CHECK(field.face_slabs().h < 0.01);
+    CHECK(field.face_slabs().h > 0);
+    CHECK(field.face_slab_shift() == Approx(SampleField::kMaxSlabShift * eps));
+}

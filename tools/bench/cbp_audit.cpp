@@ -7,14 +7,14 @@
 //
 //   cbp_audit INPUT --iso V [--inside above|below] [--eps-voxels E] [--slab H] [--res 40] [--cell-res 0] [--points OUT.xyz] [--show 10]
 //
-// Prints (index coordinates): Voronoi edges crossing Sigma more than once (CBP_VE), facets whose
-// boundary crosses Sigma more than twice (CBP_VF) or whose interior holds a sampled island of
+// Prints (index coordinates): Voronoi edges crossing Sigma' more than once (CBP_VE), facets whose
+// boundary crosses Sigma' more than twice (CBP_VF) or whose interior holds a sampled island of
 // the other sign (a loop), and facets of M whose Voronoi edge has an odd/even count that
 // disagrees with M (parity). Only finite Voronoi edges and bounded facets within the voxel bound
 // (extent <= 8 voxels) are examined. Any violation of Sigma' is a mesher defect (with --slab 0,
 // the ones next to knife-edge creases are expected). The tool does not classify them: read the
 // coordinates. Exit 0 when nothing is found.
-// With --cell-res R > 0 it also counts the Euler characteristic of Sigma in the Voronoi cell of
+// With --cell-res R > 0 it also counts the Euler characteristic of Sigma' in the Voronoi cell of
 // every vertex of M at 1/R voxel and prints the cells with a handle (chi < 0). With --points it
 // writes the final point set (x y z per line).
 #include <isodel/mesh.h>
@@ -142,7 +142,8 @@ int main(int argc, char** argv)
             std::fclose(f);
         }
         isodel::octree::SampleField field(vol.grid, iso, side);
-        field.set_face_slabs(slab >= 0 ? isodel::octree::FaceSlabs{slab} : isodel::octree::face_slabs_for_eps(eps));
+        field.set_face_slabs(slab >= 0 ? isodel::octree::FaceSlabs{slab}
+                                       : field.face_slabs_for_eps_world(eps * field.min_voxel_edge()));
         const isodel::octree::SampleField::Reader reader(field);
         auto idx = [&](const P3& p) { return field.world_to_index(V3(p.x(), p.y(), p.z())); };
 
@@ -165,7 +166,7 @@ int main(int argc, char** argv)
             in_mesh.insert(k);
         }
 
-        // Voronoi edges: crossings of the exact Sigma, and parity against M.
+        // Voronoi edges: crossings of Sigma' (exact roots per box), and parity against M.
         int ve = 0, parity = 0;
         for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
             const auto c = f->first;
@@ -275,7 +276,7 @@ int main(int argc, char** argv)
                     break;
                 }
         }
-        // Voronoi cells of M's vertices: the Euler characteristic of Sigma n Vor(p), sampled at
+        // Voronoi cells of M's vertices: the Euler characteristic of Sigma' n Vor(p), sampled at
         // 1/CELL_RES voxel (mesher/cell_surface_euler.h). A disk has 1; chi < 0 is a handle,
         // which CBP_VC's one-cycle test cannot see.
         int vc = 0, cells = 0;
