@@ -1,7 +1,7 @@
 #pragma once
 /// \file face_slabs.h
 /// The surface isodel meshes: Sigma' = {F o phi = v}, Sigma with a slab of half-width h around
-/// every grid plane (README, "Face slabs").
+/// every grid plane (README, "Two deliberate departures": face slabs).
 ///
 /// Why. The trilinear Sigma is only C0 across cell faces. Where F has a valley across a face
 /// (it grows away from the face on both sides) and a small gradient along it, Sigma's two sheets
@@ -20,7 +20,7 @@
 ///  - No knife edges: at a slab's boundary plane F' does not vary across the slab side, so that
 ///    sheet of Sigma' is perpendicular to the plane and meets the other one at 90 degrees or more.
 ///    A fin's tip becomes a blunt end at least 2h thick.
-///  - Same topology: Sigma' is Sigma with each curve Sigma n face thickened into a band (face x
+///  - Same topology: Sigma' is Sigma with each curve Sigma n face thickened into a band (curve x
 ///    [-h, h]) and each E point into a square; where Sigma crosses the faces and edges
 ///    transversally (always, after the tie rule of sample_field.h moves v off the face saddles)
 ///    that is a homeomorphism.
