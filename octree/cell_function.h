@@ -48,16 +48,16 @@ private:
 template <class Visit>
 void for_each_piece(const FaceSlabs& s, const openvdb::math::Vec3d& a, const openvdb::math::Vec3d& b, Visit&& visit)
 {
-    const int n = s.h == 0 ? 1 : 3;
-    for (int iz = 0; iz < n; ++iz)
-        for (int iy = 0; iy < n; ++iy)
-            for (int ix = 0; ix < n; ++ix) {
-                const int idx[3] = {n == 1 ? 1 : ix, n == 1 ? 1 : iy, n == 1 ? 1 : iz};
+    const int first = s.h == 0 ? 1 : 0, last = s.h == 0 ? 1 : 2; // h = 0: the core is the cell
+    for (int iz = first; iz <= last; ++iz)
+        for (int iy = first; iy <= last; ++iy)
+            for (int ix = first; ix <= last; ++ix) {
+                const int idx[3] = {ix, iy, iz};
                 openvdb::math::Vec3d lo, hi;
                 bool meets = true;
                 for (int k = 0; k < 3 && meets; ++k) {
-                    double plo = 0, phi = 1;
-                    if (n == 3) s.piece_bounds(idx[k], plo, phi);
+                    double plo, phi;
+                    s.piece_bounds(idx[k], plo, phi);
                     lo[k] = std::max(a[k], plo);
                     hi[k] = std::min(b[k], phi);
                     meets = lo[k] <= hi[k];

@@ -1,5 +1,7 @@
 // Sigma' = {F o phi = v} (octree/face_slabs.h, cell_function.h): phi and its preimages, F' per
 // slab/core box, and the segment walk and phi_at reading F' in mesh space.
+#include "test_adaptive_random.h"
+
 #include "octree/cell_function.h"
 #include "octree/segment_walk.h"
 
@@ -20,18 +22,6 @@ double f_prime(const SampleField::Reader& reader, const FaceSlabs& slabs, const 
     double corner[8];
     reader.cell_corners(c, corner);
     return isodel::octree::Trilinear::from_corners(corner)(s[0] - c[0], s[1] - c[1], s[2] - c[2]);
-}
-
-openvdb::FloatGrid::Ptr random_grid(unsigned seed, int n)
-{
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> U(-1, 1);
-    auto g = openvdb::FloatGrid::create(-1.f);
-    auto acc = g->getAccessor();
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) acc.setValueOn(Coord(x, y, z), float(U(rng)));
-    return g;
 }
 
 } // namespace
@@ -65,7 +55,7 @@ TEST_CASE("face slabs: phi collapses each slab onto its plane and stretches the 
 
 TEST_CASE("face slabs: F' is trilinear on each slab/core box and agrees with F o phi", "[octree][face_slabs]")
 {
-    auto grid = random_grid(3, 4);
+    auto grid = testing::random_samples(4, 3);
     SampleField field(grid, 0.0, isodel::Inside::Above);
     field.set_face_slabs(FaceSlabs{0.07});
     const SampleField::Reader reader(field);
@@ -98,7 +88,7 @@ TEST_CASE("face slabs: F' is trilinear on each slab/core box and agrees with F o
 
 TEST_CASE("face slabs: the segment walk finds every sign change of F' (dense sampling as reference)", "[octree][face_slabs]")
 {
-    auto grid = random_grid(5, 6);
+    auto grid = testing::random_samples(6, 5);
     for (const double h : {0.0, 0.01, 0.1}) {
         SampleField field(grid, 0.0, isodel::Inside::Above);
         field.set_face_slabs(FaceSlabs{h});
@@ -141,7 +131,7 @@ TEST_CASE("face slabs: the segment walk finds every sign change of F' (dense sam
 
 TEST_CASE("face slabs: the mesher's slab width keeps Sigma' within 0.035 eps of Sigma on any lattice", "[octree][face_slabs]")
 {
-    auto grid = random_grid(9, 3);
+    auto grid = testing::random_samples(3, 9);
     // Cubic voxels of edge 0.5: h = eps / 50 in voxels, shift sqrt(3) h voxel edges.
     grid->setTransform(openvdb::math::Transform::createLinearTransform(0.5));
     {
