@@ -2,6 +2,7 @@
 
 #include "mesher/tet_improver.h"
 
+#include <limits>
 #include <tuple>
 
 namespace isodel::mesher {
@@ -66,7 +67,9 @@ bool Improver::try_smooth(std::int32_t v)
     // succeeds.
     if (star_[std::size_t(v)].size() > kMaxSmoothStar) return false;
     if (!free_star(v)) return false;
-    const auto& s = star_[std::size_t(v)];
+    // The star, worst tets first: star_quality() then rejects a losing position early.
+    std::vector<std::int32_t> s = star_[std::size_t(v)];
+    std::sort(s.begin(), s.end(), [&](std::int32_t a, std::int32_t b) { return std::make_pair(q(std::size_t(a)), a) < std::make_pair(q(std::size_t(b)), b); });
     std::vector<std::pair<std::int32_t, std::int32_t>> link;
     for (std::int32_t t : s)
         for (int i = 0; i < 4; ++i)
@@ -74,24 +77,10 @@ bool Improver::try_smooth(std::int32_t v)
                 for (int j = i + 1; j < 4; ++j)
                     if (tets_[t][j] != v) link.push_back(std::minmax(tets_[t][i], tets_[t][j]));
 
-    // A move must raise the star's worst angle without adding tets below the target.
-    auto star_quality = [&](const V3& x, double& worst, int& bad) {
-        worst = kBest;
-        bad = 0;
-        for (std::int32_t t : s) {
-            V3 p[4];
-            for (int j = 0; j < 4; ++j) p[j] = tets_[t][j] == v ? x : P(tets_[t][j]);
-            if (orient(p[0], p[1], p[2], p[3]) <= 0) return false;
-            const double a = quality(p[0], p[1], p[2], p[3]);
-            worst = std::min(worst, a);
-            bad += a < target_;
-        }
-        return true;
-    };
     const V3 x0 = P(v);
     double current;
     int current_bad;
-    if (!star_quality(x0, current, current_bad)) return false;
+    if (!star_quality(v, s, x0, -kBest, current, current_bad)) return false;
     // Candidates: toward the centroid of the link, and off the face opposite v in the worst
     // tet, to the apex height of a regular tet on that face.
     std::vector<V3> cand;
@@ -127,22 +116,116 @@ bool Improver::try_smooth(std::int32_t v)
         }
     }
     double best = current;
-    const V3* best_x = nullptr;
+    V3 best_x = x0;
     for (const V3& x : cand) {
         double w;
         int b;
-        if (star_quality(x, w, b) && b <= current_bad && w > best + kMargin) {
+        if (star_quality(v, s, x, best + kMargin, w, b) && b <= current_bad) {
             best = w;
-            best_x = &x;
+            best_x = x;
         }
     }
-    if (!best_x) return false;
-    m_.vertices[std::size_t(v)] = *best_x;
+    // Then climb: the worst angle of the star is a maximum of smooth functions of v's position,
+    // so from the best candidate step along the steepest ascent direction of its active tets
+    // (Freitag & Ollivier-Gooch's non-smooth optimisation, as Klingner & Shewchuk smooth).
+    ascend_star(v, s, best_x, best, current_bad);
+    if (!(best > current + kMargin)) return false;
+    m_.vertices[std::size_t(v)] = best_x;
     for (std::int32_t t : s) {
         qual_[std::size_t(t)] = quality_of(tets_[t]);
         touch(tets_[t]);
     }
     return true;
+}
+
+bool Improver::star_quality(std::int32_t v, const std::vector<std::int32_t>& s, const V3& x, double beat, double& worst,
+                            int& bad) const
+{
+    worst = kBest;
+    bad = 0;
+    // Qualities first: most trial positions lose to \p beat on some tet, and then the exact
+    // orientation predicates need not run.
+    for (std::int32_t t : s) {
+        V3 p[4];
+        for (int j = 0; j < 4; ++j) p[j] = tets_[t][j] == v ? x : P(tets_[t][j]);
+        const double a = quality(p[0], p[1], p[2], p[3]);
+        if (a <= beat) return false;
+        worst = std::min(worst, a);
+        bad += a < target_;
+    }
+    for (std::int32_t t : s) {
+        V3 p[4];
+        for (int j = 0; j < 4; ++j) p[j] = tets_[t][j] == v ? x : P(tets_[t][j]);
+        if (orient(p[0], p[1], p[2], p[3]) <= 0) return false;
+    }
+    return true;
+}
+
+void Improver::ascend_star(std::int32_t v, const std::vector<std::int32_t>& s, V3& x, double& worst, int max_bad) const
+{
+    double shortest = std::numeric_limits<double>::infinity();
+    for (std::int32_t t : s)
+        for (std::int32_t w : tets_[t])
+            if (w != v) shortest = std::min(shortest, norm(sub(P(w), x)));
+    if (!(shortest > 0) || !std::isfinite(shortest)) return;
+    const double h = 1e-7 * shortest;          // finite-difference step
+    double step = 0.1 * shortest;              // first trial step; grows after a success
+    constexpr double kActive = 1e-4;           // tets this close to the worst are active
+    std::vector<V3> grads;
+    for (int it = 0; it < kMaxAscentSteps && step > 1e-4 * shortest; ++it) {
+        // Gradients of the active tets' qualities with respect to x (central differences).
+        grads.clear();
+        for (std::int32_t t : s) {
+            V3 p[4];
+            int k = 0;
+            for (int j = 0; j < 4; ++j) {
+                p[j] = P(tets_[t][j]);
+                if (tets_[t][j] == v) k = j;
+            }
+            p[k] = x;
+            if (quality(p[0], p[1], p[2], p[3]) > worst + kActive) continue;
+            V3 g;
+            for (int c = 0; c < 3; ++c) {
+                p[k][c] = x[c] + h;
+                const double up = quality(p[0], p[1], p[2], p[3]);
+                p[k][c] = x[c] - h;
+                const double down = quality(p[0], p[1], p[2], p[3]);
+                p[k][c] = x[c];
+                g[c] = (up - down) / (2 * h);
+            }
+            grads.push_back(g);
+        }
+        if (grads.empty()) return;
+        // Steepest ascent of the minimum: the point of the active gradients' convex hull
+        // nearest the origin (Gilbert's algorithm, a few rounds).
+        V3 d = grads.front();
+        for (int round = 0; round < 16; ++round) {
+            const V3* far = &grads.front();
+            for (const V3& g : grads)
+                if (dot(g, d) < dot(*far, d)) far = &g;
+            const V3 e = sub(*far, d);
+            const double ee = dot(e, e);
+            if (!(ee > 0) || dot(*far, d) >= dot(d, d) * (1 - 1e-9)) break;
+            const double lambda = std::clamp(-dot(d, e) / ee, 0.0, 1.0);
+            d = {d[0] + lambda * e[0], d[1] + lambda * e[1], d[2] + lambda * e[2]};
+        }
+        const double dn = norm(d);
+        if (!(dn > 0)) return; // stationary: no direction raises every active tet
+        bool moved = false;
+        for (double a = step; a > 1e-4 * shortest; a *= 0.5) {
+            const V3 y{x[0] + a * d[0] / dn, x[1] + a * d[1] / dn, x[2] + a * d[2] / dn};
+            double w;
+            int b;
+            if (star_quality(v, s, y, worst + kMargin, w, b) && b <= max_bad) {
+                x = y;
+                worst = w;
+                step = 2 * a;
+                moved = true;
+                break;
+            }
+        }
+        if (!moved) return;
+    }
 }
 
 bool Improver::collapse(std::int32_t v, const Tet bad)

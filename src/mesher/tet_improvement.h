@@ -8,8 +8,10 @@
 // property of the tetrahedra (not of M) for their shape. It is local, greedy and only ever
 // improves (after Klingner & Shewchuk, "Aggressive tetrahedral mesh improvement", 2007):
 //   - vertex smoothing: a vertex that is not M's and not on the region's outer boundary moves
-//     to the best of a few candidate positions, if every tet of its star stays positively
-//     oriented (exact orientation predicate) and the star's worst dihedral angle grows;
+//     to the best of a few candidate positions, then climbs along the steepest ascent direction
+//     of its star's worst tets (the nearest point to the origin of their gradients' convex hull,
+//     as Freitag & Ollivier-Gooch's non-smooth optimisation), each step kept if every tet of its
+//     star stays positively oriented (exact orientation predicate) and the worst angle grows;
 //   - edge collapse: such a vertex goes, its star re-filled as the cone from one of its
 //     neighbours (any vertex, M's included, which stays put), if every new tet is positively
 //     oriented and the worst angle grows;
@@ -17,7 +19,9 @@
 //     (Shewchuk's edge removal; 3 is the 3-2 flip), all of one region, are replaced when every
 //     new tet is positively oriented and the worst dihedral angle grows;
 //   - vertex insertion: a new vertex next to a tet still bad after all that (a sliver between
-//     triangles of M), its cavity re-filled as a cone, when the worst angle grows.
+//     triangles of M, or on a thin triangle of M), its cavity re-filled as a cone, when the worst
+//     angle grows; candidates above each face and next to each edge, at a distance set by that
+//     edge's length (a short edge of M needs a vertex near it), and the new vertex is smoothed.
 // Nothing changes a vertex of M, a triangle of M (its two sides are different regions, or it
 // bounds the mesh) or a region tag, so the inside region's boundary stays M exactly and its
 // volume stays the volume M encloses. Each pass visits the tets below the target angle in a

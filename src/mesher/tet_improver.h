@@ -56,6 +56,7 @@ inline double degrees(double q) { return std::acos(std::clamp(-q, -1.0, 1.0)) * 
 inline constexpr double kBest = 2;     ///< above every quality
 inline constexpr double kInvalid = -3; ///< below every quality: an inverted tet
 inline constexpr double kMargin = 1e-12; ///< an improvement must beat the old quality by this much
+inline constexpr int kMaxAscentSteps = 30; ///< bound on the hill-climbing steps of one smoothing (Improver::ascend_star)
 inline constexpr std::size_t kMaxSmoothStar = 256; ///< larger stars are not smoothed or collapsed (Improver::try_smooth)
 
 /// A flip may only replace tets by tets filling the same polytope. The orientation predicates
@@ -163,6 +164,17 @@ private:
     }
     bool try_smooth(std::int32_t v);
 
+    /// The worst quality and the number of tets below the target of \p v's star \p s with v
+    /// at \p x; false if a tet would not be positively oriented (exact predicate) or its
+    /// quality is not above \p beat.
+    bool star_quality(std::int32_t v, const std::vector<std::int32_t>& s, const V3& x, double beat, double& worst,
+                      int& bad) const;
+
+    /// Hill climbing on the star's worst quality from \p x (whose value is \p worst), along the
+    /// steepest ascent direction of the active tets, up to kMaxAscentSteps steps, each kept only if
+    /// it raises the worst quality, keeps every tet positive and at most \p max_bad tets bad.
+    void ascend_star(std::int32_t v, const std::vector<std::int32_t>& s, V3& x, double& worst, int max_bad) const;
+
     /// Edge collapse: the free vertex \p v goes, its star becomes the cone from a neighbour x
     /// over the triangles of v's link that miss x. Valid when every new tet is positively
     /// oriented (x then sees the whole link: the cone fills exactly v's star); done for the
@@ -190,9 +202,11 @@ private:
     /// t: the cavity starts as {t} and takes the tet across each face x does not see strictly
     /// from inside (same region only: M's triangles and the outer boundary stay faces), up to
     /// kMaxCavity tets; then every cavity face coned to x is positively oriented, so the cone
-    /// fills the cavity exactly. Candidates: above each face of t, on t's side, at 0.3, 0.6 and
-    /// 1 times the apex height of a regular tet on it; the best one is kept if it raises the
-    /// cavity's worst angle.
+    /// fills the cavity exactly. Candidates: above each face of t, on t's side, at 0.3, 0.6, 1
+    /// and 1.5 times the apex height of a regular tet on it, and above the midpoint of each
+    /// edge of the face at 0.5 and 0.9 times that edge's length (next to a short edge of M, where
+    /// a far vertex makes a thin tet); the best one is kept if it raises the cavity's worst
+    /// angle, and the new vertex is then smoothed.
     bool insert_vertex(std::size_t t);
 
     /// Grows the cavity of point \p x from tet \p t (see insert_vertex). On success \p cone

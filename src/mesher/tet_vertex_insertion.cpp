@@ -18,7 +18,16 @@ bool Improver::insert_vertex(std::size_t t)
         if (dot(nrm, sub(P(T[j]), fc)) < 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
         const double edge = (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c))) / 3;
         const double h = std::sqrt(2.0 / 3.0) * edge / nn;
-        for (double f : {0.3, 0.6, 1.0}) cand.push_back({fc[0] + f * h * nrm[0], fc[1] + f * h * nrm[1], fc[2] + f * h * nrm[2]});
+        for (double f : {0.3, 0.6, 1.0, 1.5}) cand.push_back({fc[0] + f * h * nrm[0], fc[1] + f * h * nrm[1], fc[2] + f * h * nrm[2]});
+        // Next to each edge of the face, at a distance of the edge's own length: a needle face
+        // (one short edge) makes every tet with a far apex thin, one near the short edge is not.
+        for (int e = 0; e < 3; ++e) {
+            const V3& u = e == 0 ? a : e == 1 ? b : c;
+            const V3& w = e == 0 ? b : e == 1 ? c : a;
+            const double len = norm(sub(w, u)) / nn;
+            const V3 mid{(u[0] + w[0]) / 2, (u[1] + w[1]) / 2, (u[2] + w[2]) / 2};
+            for (double f : {0.5, 0.9}) cand.push_back({mid[0] + f * len * nrm[0], mid[1] + f * len * nrm[1], mid[2] + f * len * nrm[2]});
+        }
     }
     std::vector<std::int32_t> best_cavity;
     std::vector<Tet> best_cone;
@@ -45,7 +54,10 @@ bool Improver::insert_vertex(std::size_t t)
     for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->push_back(0);
     free_.push_back(0);
     for (Tet& x : best_cone) x[0] = v;
-    if (replace(best_cavity, best_cone)) return true;
+    if (replace(best_cavity, best_cone)) {
+        smooth(v); // the cone's vertex is free: settle it where its star is best
+        return true;
+    }
     m_.vertices.pop_back(); // the volume check refused the cone: no vertex without tets
     star_.pop_back();
     for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->pop_back();
@@ -56,7 +68,7 @@ bool Improver::insert_vertex(std::size_t t)
 bool Improver::cavity_for(std::size_t t, std::int32_t region, const V3& x, std::vector<std::int32_t>& cavity,
                           std::vector<Tet>& cone) const
 {
-    constexpr std::size_t kMaxCavity = 24;
+    constexpr std::size_t kMaxCavity = 64;
     const auto in_cavity = [&](std::int32_t u) { return std::find(cavity.begin(), cavity.end(), u) != cavity.end(); };
     // Tet C with x in place of C[j], rotated by an even permutation so x is in slot 0: it is
     // positively oriented iff x is strictly on C[j]'s side of the face.

@@ -160,8 +160,10 @@ TEST_CASE("tet improvement with vertex insertion: no sliver left between good tr
 {
     // With M's triangles kept above 25 degrees (--facet-angle), what bounds the smallest dihedral
     // angle is the improvement itself. Before vertex insertion the torus kept slivers of
-    // 0.003-0.02 degrees (two faces on M, or a face on M and two vertices off it); measured after
-    // it: 5.5 degrees, 43 tets under 10. The bound checked here is 3 degrees.
+    // 0.003-0.02 degrees (two faces on M, or a face on M and two vertices off it); after it 5.5
+    // degrees and 43 tets under 10; with the hill-climbing smoothing and the insertion
+    // candidates next to short edges (2026-11-26) 7.2 degrees and 17 of 1048263 tets under 10.
+    // The bounds checked here are 4 degrees and 1 in 10000.
     const Volume vol = read_volume(std::string(ISODEL_TEST_DATA) + "/torus.vdb");
     MeshOptions mo;
     mo.isovalue = 0.0;
@@ -177,8 +179,8 @@ TEST_CASE("tet improvement with vertex insertion: no sliver left between good tr
                          << t.vertices_inserted << " vertices inserted");
     CHECK(t.vertices_inserted > 0);
     CHECK(t.min_dihedral_deg_delaunay < 1.0); // the Delaunay tets do have slivers
-    CHECK(t.min_dihedral_deg >= 3.0);
-    CHECK(t.tets_below_10deg * 100 < t.tets_inside + t.tets_outside);
+    CHECK(t.min_dihedral_deg >= 4.0);
+    CHECK(t.tets_below_10deg * 10000 < t.tets_inside + t.tets_outside);
 }
 
 TEST_CASE("volume mesh: same tetrahedra with 1 and 2 threads", "[mesher][volume_mesh][determinism]")
