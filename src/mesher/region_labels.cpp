@@ -2,29 +2,53 @@
 
 #include <isodel/errors.h>
 
+#include <algorithm>
 #include <sstream>
 #include <unordered_set>
 
 namespace isodel::mesher {
 
-std::vector<std::int8_t> region_labels(const Delaunay& dt, const FacetCache& cache)
+CellIndex::CellIndex(const Delaunay& dt)
+{
+    const auto& cells = dt.tds().cells();
+    for (auto c = cells.begin(); c != cells.end(); ++c, ++size_) {
+        const auto a = reinterpret_cast<std::uintptr_t>(&*c);
+        if (!runs_.empty() && runs_.back().first + runs_.back().length * sizeof(Delaunay::Cell) == a) ++runs_.back().length;
+        else runs_.push_back({a, size_, 1});
+    }
+    std::sort(runs_.begin(), runs_.end(), [](const Run& x, const Run& y) { return x.first < y.first; });
+}
+
+std::size_t CellIndex::operator()(Cell_handle c) const
+{
+    const auto a = reinterpret_cast<std::uintptr_t>(&*c);
+    auto it = std::upper_bound(runs_.begin(), runs_.end(), a, [](std::uintptr_t x, const Run& r) { return x < r.first; });
+    CGAL_assertion(it != runs_.begin());
+    --it;
+    CGAL_assertion((a - it->first) / sizeof(Delaunay::Cell) < it->length);
+    return it->begin + (a - it->first) / sizeof(Delaunay::Cell);
+}
+
+RegionLabels region_labels(const Delaunay& dt, const FacetCache& cache)
 {
     std::unordered_set<FacetKey, FacetKeyHash> restricted;
     for (const auto& e : cache.active())
         if (e.record->crossings == 1) restricted.insert(e.key);
-    const auto& cells = dt.tds().cells();
-    std::vector<std::int8_t> label(cells.capacity(), 0);
+    RegionLabels out{CellIndex(dt), {}};
+    const CellIndex& index = out.index;
+    std::vector<std::int8_t>& label = out.label;
+    label.assign(index.size(), 0);
     std::vector<Cell_handle> stack;
     for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
         if (dt.is_infinite(c)) {
-            label[cells.index(c)] = 2;
+            label[index(c)] = 2;
             stack.push_back(c);
         }
     std::size_t conflicts = 0;
     while (!stack.empty()) {
         const Cell_handle c = stack.back();
         stack.pop_back();
-        const std::int8_t l = label[cells.index(c)];
+        const std::int8_t l = label[index(c)];
         for (int i = 0; i < 4; ++i) {
             const Cell_handle n = c->neighbor(i);
             // Facets on the convex hull (one infinite cell) have unbounded Voronoi edges and are
@@ -37,7 +61,7 @@ std::vector<std::int8_t> region_labels(const Delaunay& dt, const FacetCache& cac
                     flip = restricted.count(facet_key(Facet(c, i))) > 0;
             }
             const std::int8_t want = flip ? std::int8_t(3 - l) : l;
-            std::int8_t& ln = label[cells.index(n)];
+            std::int8_t& ln = label[index(n)];
             if (ln == 0) {
                 ln = want;
                 stack.push_back(n);
@@ -52,7 +76,7 @@ std::vector<std::int8_t> region_labels(const Delaunay& dt, const FacetCache& cac
            << " facets where the inside/outside flood fill disagrees)";
         throw GuaranteeViolated(os.str());
     }
-    return label;
+    return out;
 }
 
 } // namespace isodel::mesher

@@ -130,8 +130,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     scope.check(75);
 
     // 4. Inside/outside labels consistent with M (region_labels.h).
-    const std::vector<std::int8_t> label = region_labels(dt, cache);
-    const auto& cells = dt.tds().cells();
+    const RegionLabels label = region_labels(dt, cache);
 
     // 5. Numbering: M's vertices first, in surface.vertices order (extract_surface sorts them by
     // id), then the other vertices of the kept tetrahedra by id: independent of memory layout.
@@ -150,7 +149,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     std::vector<std::pair<std::uint32_t, Vertex_handle>> others;
     std::vector<std::pair<std::array<Vertex_handle, 4>, std::int8_t>> kept;
     for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-        const std::int8_t l = label[cells.index(Cell_handle(c))];
+        const std::int8_t l = label(Cell_handle(c));
         if (!(l == 1 ? keep_in : keep_out)) continue;
         kept.push_back({{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, l});
         for (int j = 0; j < 4; ++j)

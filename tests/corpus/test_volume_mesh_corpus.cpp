@@ -1,5 +1,6 @@
-// DELVOLMESH (issue 6) on the shared volumes at eps = 0.5 voxel: the skull, a protein, the bunny
-// and the analytic shapes of ../shared/data. Every tet positively oriented, inside volume ==
+// DELVOLMESH (issue 6) on the shared volumes at eps = 0.5 voxel: the skull, both proteins, the
+// EMD-3001 map, both level sets and every analytic shape of ../shared/data (the cells/ volumes are
+// covered by test_mesh_corpus's surfaces). Every tet positively oriented, inside volume ==
 // volume enclosed by M to 1e-9 relative, the inside region's boundary == M's triangles exactly;
 // the quality figures are printed (one line per volume; off_* = over the tets with no vertex on M).
 // Label "corpus".
@@ -32,6 +33,13 @@ TEST_CASE("shared volumes: tetrahedral meshes conform to M", "[corpus][volume_me
         {"analytic/dumbbell_thin_neck.vdb", TetRegion::Inside},
         {"analytic/tangle_cube.vdb", TetRegion::Inside},
         {"analytic/ellipsoid_aniso.vdb", TetRegion::Inside},
+        {"protein/1hpv_blobby_1A.vdb", TetRegion::Inside},
+        {"em/emd3001.vdb", TetRegion::Inside},
+        {"levelset/eight.vdb", TetRegion::Inside},
+        {"analytic/dumbbell_thin_neck_density.vdb", TetRegion::Inside},
+        {"analytic/gyroid_ball.vdb", TetRegion::Inside},
+        {"analytic/marschner_lobb.vdb", TetRegion::Inside},
+        {"analytic/tangle_cube_half.vdb", TetRegion::Inside},
     };
     std::printf("%-34s %9s %9s %9s %10s %10s %10s %9s %7s %7s %8s\n", "volume", "triangles", "tets_in", "tets_out",
                 "vol_relerr", "min_dih", "max_dih", "max_r/e", "off_dih", "off_r/e", "tets_s");
