@@ -1,6 +1,6 @@
 #pragma once
 // Internal: the map from a Delaunay facet (its sorted vertex ids) to a value, as FacetCache
-// (restricted_facets.h) keeps one per facet with a surface vertex. Every insertion erases the
+// (restricted_facets.h) keeps one per facet whose Voronoi edge crosses Sigma. Every insertion erases the
 // facets of its conflict region and every update adds the new ones, tens of lookups per point:
 // with std::unordered_map each was a chain of cache misses, a fifth of the run time. This table
 // is open addressing with linear probing (keys and a value index in one 16-byte slot, deletion

@@ -1,0 +1,75 @@
+// FacetCache (src/mesher/restricted_facets.h) is maintained incrementally: insert() drops the
+// records of the facets an insertion destroys, update() computes those of the new ones, and
+// only facets whose Voronoi edge crosses Sigma (or left its bound) keep a record. After any
+// sequence of insertions and updates, its active facets and restricted stars must equal those
+// of a fresh cache scanning the same triangulation.
+#include <catch2/catch.hpp>
+
+#include "mesher_test_support.h"
+
+#include "mesher/restricted_facets.h"
+#include "octree/sample_field.h"
+
+#include <random>
+
+using namespace isodel;
+using namespace isodel::mesher;
+
+namespace {
+
+struct Summary {
+    std::vector<std::tuple<FacetKey, int, bool>> active;
+    std::vector<std::vector<FacetKey>> stars;
+};
+
+Summary summarise(const FacetCache& cache)
+{
+    Summary s;
+    for (const auto& e : cache.active()) s.active.emplace_back(e.key, int(e.crossings), e.overflow);
+    for (std::uint32_t id = 0; id < cache.vertex_id_bound(); ++id) {
+        std::vector<FacetKey> keys;
+        for (const auto& f : cache.restricted_star(id)) keys.push_back(f.key);
+        s.stars.push_back(keys);
+    }
+    while (!s.stars.empty() && s.stars.back().empty()) s.stars.pop_back();
+    return s;
+}
+
+} // namespace
+
+TEST_CASE("facet cache: incremental records equal a fresh scan after insertions", "[mesher][facet_cache]")
+{
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+        INFO("random 5^3 volume, seed " << seed);
+        const auto grid = testing::random_volume(5, seed, false);
+        const octree::SampleField field(grid, 0.0, Inside::Above);
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(0.5, 5.5);
+        Delaunay dt;
+        std::uint32_t id = 0;
+        for (int z = 0; z <= 6; ++z)
+            for (int y = 0; y <= 6; ++y)
+                for (int x = 0; x <= 6; ++x) dt.insert(Point(x, y, z))->info() = VertexInfo{id++, PointKind::Grid};
+        for (int i = 0; i < 150; ++i)
+            dt.insert(Point(u(rng), u(rng), u(rng)))->info() = VertexInfo{id++, PointKind::Edge};
+        FacetCache cache;
+        cache.update(dt, field, 1000);
+        std::size_t restricted = 0;
+        for (int round = 0; round < 6; ++round) {
+            for (int i = 0; i < 40; ++i) {
+                const auto kind = i % 3 == 0 ? PointKind::Grid : PointKind::Topology;
+                if (cache.insert(dt, Point(u(rng), u(rng), u(rng)), VertexInfo{id, kind}) != Vertex_handle()) ++id;
+            }
+            cache.update(dt, field, 1000);
+            // Read active() between rounds too: it merges the pending changes lazily.
+            if (round % 2 == 0) restricted = cache.active().size();
+        }
+        FacetCache fresh;
+        fresh.update(dt, field, 1000);
+        const Summary a = summarise(cache), b = summarise(fresh);
+        CHECK(restricted > 0);
+        CHECK(a.active.size() == b.active.size());
+        CHECK(a.active == b.active);
+        CHECK(a.stars == b.stars);
+    }
+}
