@@ -69,7 +69,9 @@ bool Improver::try_smooth(std::int32_t v)
     if (!free_star(v)) return false;
     // The star, worst tets first: star_quality() then rejects a losing position early.
     std::vector<std::int32_t> s = star_[std::size_t(v)];
-    std::sort(s.begin(), s.end(), [&](std::int32_t a, std::int32_t b) { return std::make_pair(q(std::size_t(a)), a) < std::make_pair(q(std::size_t(b)), b); });
+    std::sort(s.begin(), s.end(), [&](std::int32_t a, std::int32_t b) {
+        return std::make_pair(q(std::size_t(a)), a) < std::make_pair(q(std::size_t(b)), b);
+    });
     std::vector<std::pair<std::int32_t, std::int32_t>> link;
     for (std::int32_t t : s)
         for (int i = 0; i < 4; ++i)
@@ -125,9 +127,10 @@ bool Improver::try_smooth(std::int32_t v)
             best_x = x;
         }
     }
-    // Then climb: the worst angle of the star is a maximum of smooth functions of v's position,
-    // so from the best candidate step along the steepest ascent direction of its active tets
-    // (Freitag & Ollivier-Gooch's non-smooth optimisation, as Klingner & Shewchuk smooth).
+    // Then climb: the star's worst quality is the minimum of smooth functions of v's position
+    // (one per tet), so from the best candidate step along the steepest ascent direction of the
+    // tets that attain it (Freitag & Ollivier-Gooch's non-smooth optimisation, as Klingner &
+    // Shewchuk smooth).
     ascend_star(v, s, best_x, best, current_bad);
     if (!(best > current + kMargin)) return false;
     m_.vertices[std::size_t(v)] = best_x;
