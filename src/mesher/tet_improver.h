@@ -25,6 +25,8 @@ inline V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2]
 inline V3 cross(const V3& a, const V3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 inline double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+/// p + t d
+inline V3 along(const V3& p, const V3& d, double t) { return {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]}; }
 inline constexpr double kPi = 3.14159265358979323846;
 
 /// Exact sign of the orientation of (a, b, c, d) (EPICK's filtered predicate on the doubles).

@@ -18,7 +18,7 @@ bool Improver::insert_vertex(std::size_t t)
         if (dot(nrm, sub(P(T[j]), fc)) < 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
         const double edge = (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c))) / 3;
         const double h = std::sqrt(2.0 / 3.0) * edge / nn;
-        for (double f : {0.3, 0.6, 1.0, 1.5}) cand.push_back({fc[0] + f * h * nrm[0], fc[1] + f * h * nrm[1], fc[2] + f * h * nrm[2]});
+        for (double f : {0.3, 0.6, 1.0, 1.5}) cand.push_back(along(fc, nrm, f * h));
         // Next to each edge of the face, at a distance of the edge's own length: a needle face
         // (one short edge) makes every tet with a far apex thin, one near the short edge is not.
         for (int e = 0; e < 3; ++e) {
@@ -26,7 +26,7 @@ bool Improver::insert_vertex(std::size_t t)
             const V3& w = e == 0 ? b : e == 1 ? c : a;
             const double len = norm(sub(w, u)) / nn;
             const V3 mid{(u[0] + w[0]) / 2, (u[1] + w[1]) / 2, (u[2] + w[2]) / 2};
-            for (double f : {0.5, 0.9}) cand.push_back({mid[0] + f * len * nrm[0], mid[1] + f * len * nrm[1], mid[2] + f * len * nrm[2]});
+            for (double f : {0.5, 0.9}) cand.push_back(along(mid, nrm, f * len));
         }
     }
     std::vector<std::int32_t> best_cavity;

@@ -54,7 +54,7 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
             dt.insert(Point(u(rng), u(rng), u(rng)))->info() = VertexInfo{id++, PointKind::Edge};
         FacetCache cache;
         cache.update(dt, field, 1000);
-        std::size_t restricted = 0;
+        std::size_t active = 0;
         for (int round = 0; round < 6; ++round) {
             for (int i = 0; i < 40; ++i) {
                 const auto kind = i % 3 == 0 ? PointKind::Grid : PointKind::Topology;
@@ -62,12 +62,12 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
             }
             cache.update(dt, field, 1000);
             // Read active() between rounds too: it merges the pending changes lazily.
-            if (round % 2 == 0) restricted = cache.active().size();
+            if (round % 2 == 0) active = cache.active().size();
         }
         FacetCache fresh;
         fresh.update(dt, field, 1000);
         const Summary a = summarise(cache), b = summarise(fresh);
-        CHECK(restricted > 0);
+        CHECK(active > 0);
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
