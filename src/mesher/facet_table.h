@@ -39,6 +39,16 @@ public:
         return {&values_[index], true};
     }
 
+    /// Whether \p key is present. Read-only: safe from several threads while nothing writes.
+    bool contains(const FacetKey& key) const
+    {
+        if (size_ == 0) return false;
+        for (std::size_t i = home(key);; i = (i + 1) & mask_) {
+            if (slots_[i].index == kEmpty) return false;
+            if (slots_[i].key == key) return true;
+        }
+    }
+
     /// Removes \p key; false when it was absent.
     bool erase(const FacetKey& key)
     {

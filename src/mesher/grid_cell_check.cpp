@@ -1,11 +1,13 @@
 #include "mesher/grid_cell_check.h"
 
 #include "mesher/circumcenter.h"
+#include "mesher/vertex_star.h"
 #include "octree/segment_walk.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace isodel::mesher {
@@ -42,14 +44,18 @@ std::optional<Candidate> check_one(const octree::SampleField::Reader& reader, Ve
 std::vector<Candidate> grid_cell_violations(const Delaunay& dt, const octree::SampleField& field,
                                             std::vector<Vertex_handle>& pending, int max_cells)
 {
-    // Incident cells are gathered serially: CGAL marks visited cells in the triangulation.
-    std::vector<std::vector<Cell_handle>> cells(pending.size());
-    for (std::size_t i = 0; i < pending.size(); ++i) dt.finite_incident_cells(pending[i], std::back_inserter(cells[i]));
     std::vector<std::optional<Candidate>> found(pending.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
+    tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 64), [&](const auto& r) {
         auto& reader = readers.local();
-        for (std::size_t i = r.begin(); i != r.end(); ++i) found[i] = check_one(reader, pending[i], cells[i], max_cells);
+        auto& cells = stars.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            gather_star(pending[i], cells); // not CGAL's incident_cells: its visit marks are shared
+            cells.erase(std::remove_if(cells.begin(), cells.end(), [&](Cell_handle c) { return dt.is_infinite(c); }),
+                        cells.end());
+            found[i] = check_one(reader, pending[i], cells, max_cells);
+        }
     });
     std::vector<Candidate> out;
     std::vector<Vertex_handle> still;

@@ -269,6 +269,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 throw GuaranteeViolated(os.str());
             }
             cache.update(dt, field, max_cells_walk);
+            const double t_update = since(tr);
             // Priority: voxel-bound holes, then Theorem 3 (grid cells), then the ViolationFinder's
             // classes; the later checks run only when the earlier ones found nothing.
             const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
@@ -339,7 +340,10 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                     throw GuaranteeViolated("voxel bound repairs did not converge");
                 continue;
             }
+            const double t_checks = since(tr) - t_update;
+            const auto ti = Clock::now();
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
+            const double t_insert = since(ti);
             for (const auto& v : ins.inserted) {
                 loops.touched(v);
                 disk_pending.push_back(v);
@@ -375,8 +379,9 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                  ? t_refine
                  : t_topology) += since(tr);
             if (std::getenv("ISODEL_TRACE"))
-                std::fprintf(stderr, "round %d: %s %zu inserted (+%zu cascade), %.2f ms\n", st.rounds,
-                             to_string(rep.kind), ins.inserted.size(), cascade, 1e3 * since(tr));
+                std::fprintf(stderr, "round %d: %s %zu inserted (+%zu cascade), %.2f ms (update %.2f, checks %.2f, insert %.2f)\n",
+                             st.rounds, to_string(rep.kind), ins.inserted.size(), cascade, 1e3 * since(tr),
+                             1e3 * t_update, 1e3 * t_checks, 1e3 * t_insert);
             if (st.n_geometry + st.n_topology > max_points) {
                 std::ostringstream os;
                 os << "refinement stopped by the point bound (" << max_points

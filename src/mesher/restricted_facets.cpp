@@ -1,6 +1,7 @@
 #include "mesher/restricted_facets.h"
 
 #include "mesher/circumcenter.h"
+#include "mesher/vertex_star.h"
 #include "octree/segment_walk.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 namespace isodel::mesher {
 namespace {
@@ -96,14 +98,15 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     struct Todo {
         Facet facet;
         FacetKey key;
-        Stored* stored; // FacetTable's values stay where they are
+        FacetRecord record;
     };
     // Only records that some check reads are kept: those of facets whose Voronoi edge crosses
     // Sigma or left its bound. The others would only be erased again by the insertion that
     // destroys them: every facet considered below belongs to a cell created since the last
     // update, so none of them was known before, and a stored zero record would never be looked
     // up. Keeping them cost 0.3 of the 4.15 GiB peak of a 250 x 212 x 289 protein at eps 0.25
-    // voxel.
+    // voxel. So records are computed into the to-do list, in parallel, and only the active ones
+    // enter the table (serially, in to-do order).
     const bool initial = !scanned_;
     std::vector<Todo> todo;
     std::vector<Entry> added;
@@ -115,48 +118,82 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               auto& reader = readers.local();
                               for (std::size_t i = r.begin(); i != r.end(); ++i)
-                                  todo[i].stored->record = compute_facet_record(dt, todo[i].facet, reader, max_cells);
+                                  todo[i].record = compute_facet_record(dt, todo[i].facet, reader, max_cells);
                           });
         computed_ += todo.size();
         for (const Todo& t : todo) {
-            const Stored& st = *t.stored;
-            if (st.record.crossings > 0 || st.record.overflow) {
-                const auto vs = facet_vertices(st.facet);
-                const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
-                added.push_back({st.facet, t.key, &st.record, st.record.crossings, st.record.overflow, on});
-            } else {
-                map_.erase(t.key);
-            }
-            // A recomputed key replaces its old entry (none on the first scan: nothing is active).
-            if (!initial) changed_.push_back(t.key);
+            // No entry in changed_ for a recomputed key: it is not in the table, so any old
+            // entry of it was erased by insert(), which listed it there.
+            if (t.record.crossings == 0 && !t.record.overflow) continue;
+            const Stored* st = map_.try_emplace(t.key, Stored{t.facet, t.record}).first;
+            const auto vs = facet_vertices(st->facet);
+            const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
+            added.push_back({st->facet, t.key, &st->record, st->record.crossings, st->record.overflow, on});
         }
         todo.clear();
     };
-    auto consider = [&](const Facet& f) {
+    const auto has_surface_vertex = [](const Facet& f) {
         const auto vs = facet_vertices(f);
-        if (!vs[0]->info().on_surface() && !vs[1]->info().on_surface() && !vs[2]->info().on_surface()) return;
-        const FacetKey key = facet_key(f);
-        // A placeholder until computed below; it also dedupes within this update.
-        const auto [stored, fresh] = map_.try_emplace(key, Stored{f, FacetRecord()});
-        if (fresh) todo.push_back({f, key, stored});
+        return vs[0]->info().on_surface() || vs[1]->info().on_surface() || vs[2]->info().on_surface();
     };
     if (initial) {
         // Every facet once, in chunks: the to-do list of the whole first triangulation would be
-        // a peak of its own (40 bytes a facet).
-        constexpr std::size_t kChunk = std::size_t(1) << 20;
+        // a peak of its own (~100 bytes a facet).
+        constexpr std::size_t kChunk = std::size_t(1) << 18;
         for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) {
-            consider(*it);
+            if (has_surface_vertex(*it)) todo.push_back({*it, facet_key(*it), FacetRecord()});
             if (todo.size() >= kChunk) compute();
         }
         scanned_ = true;
     } else {
-        std::vector<Cell_handle> cells;
-        for (const Vertex_handle& v : inserted_) {
-            cells.clear();
-            dt.incident_cells(v, std::back_inserter(cells));
-            for (const Cell_handle& c : cells)
-                for (int i = 0; i < 4; ++i)
-                    if (!dt.is_infinite(c, i)) consider(Facet(c, i));
+        // The facets of the cells around the inserted points, a chunk of points at a time. The
+        // stars are gathered in parallel (gather_star: no shared visit marks), each facet is kept
+        // once (sorted by key, then by the order found) and skipped when its record is known.
+        constexpr std::size_t kChunk = std::size_t(1) << 14;
+        struct Found {
+            FacetKey key;
+            std::uint32_t order;
+            Facet facet;
+        };
+        std::vector<std::vector<Found>> per_vertex;
+        std::vector<Found> found;
+        std::vector<char> known;
+        tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
+        for (std::size_t first = 0; first < inserted_.size(); first += kChunk) {
+            const std::size_t n = std::min(kChunk, inserted_.size() - first);
+            per_vertex.assign(n, {});
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const auto& r) {
+                auto& cells = stars.local();
+                for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                    gather_star(inserted_[first + i], cells);
+                    for (const Cell_handle& c : cells)
+                        for (int j = 0; j < 4; ++j) {
+                            // A facet through v is in two cells of the star: take it from one.
+                            if (j != c->index(inserted_[first + i]) && c->neighbor(j) < c) continue;
+                            const Facet f(c, j);
+                            if (!dt.is_infinite(f) && has_surface_vertex(f))
+                                per_vertex[i].push_back({facet_key(f), 0, f});
+                        }
+                }
+            });
+            found.clear();
+            for (auto& list : per_vertex)
+                for (Found& f : list) {
+                    f.order = std::uint32_t(found.size());
+                    found.push_back(f);
+                }
+            tbb::parallel_sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
+                return a.key < b.key || (a.key == b.key && a.order < b.order);
+            });
+            found.erase(std::unique(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.key == b.key; }),
+                        found.end());
+            known.assign(found.size(), 0);
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, found.size(), 1024), [&](const auto& r) {
+                for (std::size_t i = r.begin(); i != r.end(); ++i) known[i] = map_.contains(found[i].key);
+            });
+            for (std::size_t i = 0; i < found.size(); ++i)
+                if (!known[i]) todo.push_back({found[i].facet, found[i].key, FacetRecord()});
+            compute();
         }
     }
     inserted_.clear();
@@ -167,8 +204,8 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     // done only when active() is next read (merge_pending): the cascade of CBP_VE steps in
     // between reads recent() alone.
     const auto by_key = [](const Entry& a, const Entry& b) { return a.key < b.key; };
-    std::sort(added.begin(), added.end(), by_key);
-    std::sort(changed_.begin(), changed_.end());
+    tbb::parallel_sort(added.begin(), added.end(), by_key); // keys are unique: any sort gives one order
+    tbb::parallel_sort(changed_.begin(), changed_.end());
     changed_.erase(std::unique(changed_.begin(), changed_.end()), changed_.end());
     // A pending entry whose key changed again is stale (its recomputation, if active, is in added).
     if (!pending_added_.empty())

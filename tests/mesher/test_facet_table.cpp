@@ -45,6 +45,8 @@ TEST_CASE("facet table: agrees with std::map under random inserts and erasures",
             where.erase(k);
         }
         REQUIRE(table.size() == reference.size());
+        const FacetKey probe = key_of(id(rng), id(rng), id(rng));
+        REQUIRE(table.contains(probe) == (reference.count(probe) == 1));
     }
     // Every key still present is found, with its value at the same address.
     for (const auto& [k, v] : reference) {
