@@ -11,6 +11,7 @@
 #include "mesher/hausdorff_refinement.h"
 #include "mesher/mesh_field.h"
 #include "mesher/partitioned_meshing.h"
+#include "mesher/initial_delaunay.h"
 #include "mesher/point_insertion.h"
 #include "mesher/restricted_facets.h"
 #include "mesher/snap_edge_points.h"
@@ -173,7 +174,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     Delaunay dt;
     {
         InterruptScope scope(interrupter, "delaunay");
-        dt.insert(initial.begin(), initial.end());
+        build_initial_delaunay(dt, initial);
         scope.check(100);
     }
     std::uint32_t next_id = std::uint32_t(initial.size());
