@@ -1,16 +1,20 @@
 #include "mesher/facet_loops.h"
 
 #include "mesher/circumcenter.h"
+#include "mesher/vertex_star.h"
 #include "octree/segment_walk.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 namespace isodel::mesher {
@@ -20,7 +24,8 @@ using octree::Vec3d;
 
 struct EdgeJob {
     Delaunay::Edge edge;
-    std::uint32_t a, b; // vertex ids, a < b
+    std::uint32_t a, b;  // vertex ids, a < b
+    std::uint32_t order; // when it was found (which of an edge's cells represents it)
 };
 
 /// A Voronoi facet: its vertices in order, the normal from that order, and the squared length
@@ -277,39 +282,66 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
 {
     // Sigma meets only Voronoi cells of E/N points (Theorem 3, checked by grid_cell_check), so
     // only facets dual to edges with such an endpoint can hold a loop.
-    std::vector<EdgeJob> jobs;
-    auto add = [&](const Delaunay::Edge& e) {
-        const auto va = e.first->vertex(e.second), vb = e.first->vertex(e.third);
-        if (dt.is_infinite(va) || dt.is_infinite(vb)) return;
-        if (!va->info().on_surface() && !vb->info().on_surface()) return;
-        jobs.push_back({e, std::min(va->info().id, vb->info().id), std::max(va->info().id, vb->info().id)});
-    };
+    // The edges to check, gathered from vertex stars in parallel (gather_star: no shared visit
+    // marks): on the first scan the edges at every E/N vertex (an edge between two of them taken
+    // at its smaller id), later every edge of the cells around the touched vertices, since a
+    // Voronoi facet changes only when a cell around its edge does. Plus the facets violated last
+    // time (their point may have been skipped as too close to another one of the batch).
+    std::vector<Vertex_handle> from;
     if (first_) {
-        for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) add(*e);
-        first_ = false;
+        for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+            if (v->info().on_surface()) from.push_back(v);
+        // Vertex order by id, so that which cell represents an edge (the first found) does not
+        // depend on where the triangulation stores its vertices.
+        std::sort(from.begin(), from.end(), [](Vertex_handle x, Vertex_handle y) { return x->info().id < y->info().id; });
     } else {
-        // A Voronoi facet changes only when a cell around its edge does: the edges of the cells
-        // created since the last scan, plus the facets that were violated then (their point may
-        // have been skipped as too close to another one of the batch).
-        std::vector<Cell_handle> cells;
-        for (const auto& v : touched_) {
-            cells.clear();
-            dt.incident_cells(v, std::back_inserter(cells));
-            for (const auto& c : cells)
-                for (int i = 0; i < 4; ++i)
-                    for (int j = i + 1; j < 4; ++j) add(Delaunay::Edge(c, i, j));
-        }
-        for (const auto& [va, vb] : flagged_) {
-            Cell_handle c;
-            int i, j;
-            if (dt.is_edge(va, vb, c, i, j)) add(Delaunay::Edge(c, i, j));
-        }
+        from.swap(touched_);
     }
+    std::vector<std::vector<EdgeJob>> per_vertex(from.size());
+    tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 64), [&](const auto& r) {
+        auto& cells = stars.local();
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            const Vertex_handle v = from[k];
+            auto& out = per_vertex[k];
+            gather_star(v, cells);
+            for (const Cell_handle& c : cells)
+                for (int i = 0; i < 4; ++i)
+                    for (int j = i + 1; j < 4; ++j) {
+                        const auto va = c->vertex(i), vb = c->vertex(j);
+                        if (first_ && va != v && vb != v) continue; // only the edges at v
+                        if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
+                        if (!va->info().on_surface() && !vb->info().on_surface()) continue;
+                        const auto ia = va->info().id, ib = vb->info().id;
+                        if (first_ && va->info().on_surface() && vb->info().on_surface() &&
+                            v->info().id != std::min(ia, ib))
+                            continue; // found from its other end
+                        out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), 0});
+                    }
+        }
+    });
+    first_ = false;
     touched_.clear();
+    std::vector<EdgeJob> jobs;
+    for (auto& list : per_vertex)
+        for (EdgeJob& job : list) {
+            job.order = std::uint32_t(jobs.size());
+            jobs.push_back(job);
+        }
+    per_vertex = {};
+    for (const auto& [va, vb] : flagged_) {
+        Cell_handle c;
+        int i, j;
+        if (dt.is_edge(va, vb, c, i, j))
+            jobs.push_back({Delaunay::Edge(c, i, j), std::min(va->info().id, vb->info().id),
+                            std::max(va->info().id, vb->info().id), std::uint32_t(jobs.size())});
+    }
     flagged_.clear();
-    // One job per edge (an edge is seen from several new cells), in id order.
-    std::sort(jobs.begin(), jobs.end(),
-              [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+    // One job per edge (an edge is seen from several cells), in id order; the first found
+    // represents it.
+    tbb::parallel_sort(jobs.begin(), jobs.end(), [](const EdgeJob& x, const EdgeJob& y) {
+        return std::tie(x.a, x.b, x.order) < std::tie(y.a, y.b, y.order);
+    });
     jobs.erase(std::unique(jobs.begin(), jobs.end(),
                            [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; }),
                jobs.end());

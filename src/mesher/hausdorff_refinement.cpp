@@ -14,11 +14,12 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 
 namespace isodel::mesher {
@@ -218,27 +219,49 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
     for (const auto* e : restricted)
         if (!passed_.count(e->key)) todo.push_back(e);
     if (todo.empty()) return {};
-    // Only the edges of the facets to check (most rounds check a few hundred of 10^5 facets).
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Tri>> by_edge;
-    for (const auto* e : todo) {
-        const auto& k = e->key.v;
-        by_edge[{k[0], k[1]}];
-        by_edge[{k[0], k[2]}];
-        by_edge[{k[1], k[2]}];
-    }
-    for (const auto* e : restricted) {
-        const auto& k = e->key.v;
-        std::vector<Tri>* lists[3] = {nullptr, nullptr, nullptr};
-        int n = 0;
-        for (const auto& edge : {std::make_pair(k[0], k[1]), std::make_pair(k[0], k[2]), std::make_pair(k[1], k[2])}) {
-            const auto it = by_edge.find(edge);
-            if (it != by_edge.end()) lists[n++] = &it->second;
+    // The restricted triangles around each edge of the facets to check: (edge, triangle) pairs
+    // sorted by edge, found by binary search. Only those edges are wanted (most rounds check a
+    // few hundred of 10^5 facets); the pairs are found and filled in parallel.
+    const auto edge_of = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+    const auto edges_of = [&](const FacetKey& key) {
+        const auto& k = key.v;
+        return std::array<std::uint64_t, 3>{edge_of(k[0], k[1]), edge_of(k[0], k[2]), edge_of(k[1], k[2])};
+    };
+    std::vector<std::uint64_t> wanted;
+    wanted.reserve(3 * todo.size());
+    for (const auto* e : todo)
+        for (const std::uint64_t edge : edges_of(e->key)) wanted.push_back(edge);
+    tbb::parallel_sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    std::vector<std::uint8_t> hits(restricted.size(), 0); // bit j: edge j is wanted
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, restricted.size(), 4096), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const auto edges = edges_of(restricted[i]->key);
+            for (int j = 0; j < 3; ++j)
+                if (std::binary_search(wanted.begin(), wanted.end(), edges[j])) hits[i] |= std::uint8_t(1u << j);
         }
-        if (n == 0) continue;
-        const auto vs = facet_vertices(e->facet);
-        const Tri t{to_vdb(vs[0]->point()), to_vdb(vs[1]->point()), to_vdb(vs[2]->point())};
-        for (int i = 0; i < n; ++i) lists[i]->push_back(t);
-    }
+    });
+    std::vector<std::size_t> first(restricted.size() + 1, 0);
+    for (std::size_t i = 0; i < restricted.size(); ++i)
+        first[i + 1] = first[i] + std::size_t((hits[i] & 1) + ((hits[i] >> 1) & 1) + ((hits[i] >> 2) & 1));
+    struct Around {
+        std::uint64_t edge;
+        Tri tri;
+    };
+    std::vector<Around> around(first.back());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, restricted.size(), 4096), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            if (!hits[i]) continue;
+            const auto vs = facet_vertices(restricted[i]->facet);
+            const Tri t{to_vdb(vs[0]->point()), to_vdb(vs[1]->point()), to_vdb(vs[2]->point())};
+            const auto edges = edges_of(restricted[i]->key);
+            std::size_t at = first[i];
+            for (int j = 0; j < 3; ++j)
+                if (hits[i] & (1u << j)) around[at++] = {edges[j], t};
+        }
+    });
+    // By edge only: the triangles of one edge are read for a minimum, in any order.
+    tbb::parallel_sort(around.begin(), around.end(), [](const Around& x, const Around& y) { return x.edge < y.edge; });
     const double limit = 0.7 * eps_;
     const double step_cap = 0.5 * field_.min_voxel_edge();
     std::vector<char> bad(todo.size(), 0);
@@ -259,9 +282,12 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
             const Vec3d p = to_vdb(e->record->surface_point);
             // Sigma -> M at p.
             double dp = (geometry::closest_on_triangle(p, a, b, c) - p).length();
-            const auto& k = e->key.v;
-            for (const auto& edge : {std::make_pair(k[0], k[1]), std::make_pair(k[0], k[2]), std::make_pair(k[1], k[2])})
-                for (const Tri& t : by_edge.at(edge)) dp = std::min(dp, (geometry::closest_on_triangle(p, t.a, t.b, t.c) - p).length());
+            for (const std::uint64_t edge : edges_of(e->key)) {
+                auto it = std::lower_bound(around.begin(), around.end(), edge,
+                                           [](const Around& x, std::uint64_t y) { return x.edge < y; });
+                for (; it != around.end() && it->edge == edge; ++it)
+                    dp = std::min(dp, (geometry::closest_on_triangle(p, it->tri.a, it->tri.b, it->tri.c) - p).length());
+            }
             if (dp > limit) {
                 bad[i] = 1;
                 continue;
@@ -305,13 +331,14 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     // Distances only (no combinatorial decision): a plain double kernel is enough here.
     using KD = CGAL::Simple_cartesian<double>;
     using Tree = CGAL::AABB_tree<CGAL::AABB_traits<KD, CGAL::AABB_triangle_primitive<KD, std::vector<KD::Triangle_3>::const_iterator>>>;
-    std::vector<KD::Triangle_3> tris;
-    tris.reserve(restricted.size());
-    for (const auto* e : restricted) {
-        const auto vs = facet_vertices(e->facet);
+    std::vector<KD::Triangle_3> tris(restricted.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, restricted.size(), 4096), [&](const auto& r) {
         auto kp = [](const Point& p) { return KD::Point_3(p.x(), p.y(), p.z()); };
-        tris.emplace_back(kp(vs[0]->point()), kp(vs[1]->point()), kp(vs[2]->point()));
-    }
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const auto vs = facet_vertices(restricted[i]->facet);
+            tris[i] = KD::Triangle_3(kp(vs[0]->point()), kp(vs[1]->point()), kp(vs[2]->point()));
+        }
+    });
     if (tris.empty()) return {};
     // A cell that passed before still passes while the triangles nearest to its samples are in
     // M: d(s, M) <= d(s, T) for every T in M. Only the other cells are sampled again.
@@ -322,15 +349,16 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     };
     crease_state_.resize(crossed_cells_.size(), CreaseState::Unknown);
     crease_witness_.resize(crossed_cells_.size());
+    std::vector<char> recheck(crossed_cells_.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, crossed_cells_.size(), 1024), [&](const auto& r) {
+        for (std::size_t ci = r.begin(); ci != r.end(); ++ci)
+            recheck[ci] = crease_state_[ci] == CreaseState::Unknown ||
+                          (crease_state_[ci] == CreaseState::Passed &&
+                           !std::all_of(crease_witness_[ci].begin(), crease_witness_[ci].end(), in_m));
+    });
     std::vector<std::size_t> todo;
-    for (std::size_t ci = 0; ci < crossed_cells_.size(); ++ci) {
-        if (crease_state_[ci] == CreaseState::NoCrease) continue;
-        if (crease_state_[ci] == CreaseState::Passed &&
-            std::all_of(crease_witness_[ci].begin(), crease_witness_[ci].end(),
-                        in_m))
-            continue;
-        todo.push_back(ci);
-    }
+    for (std::size_t ci = 0; ci < crossed_cells_.size(); ++ci)
+        if (recheck[ci]) todo.push_back(ci);
     if (todo.empty()) return {};
     Tree tree(tris.cbegin(), tris.cend());
     tree.accelerate_distance_queries();
