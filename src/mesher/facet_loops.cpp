@@ -25,7 +25,7 @@ using octree::Vec3d;
 struct EdgeJob {
     Delaunay::Edge edge;
     std::uint32_t a, b;  // vertex ids, a < b
-    std::uint32_t order; // when it was found (which of an edge's cells represents it)
+    std::uint32_t order; // when it was found: the first found of an edge's duplicates is kept
 };
 
 /// A Voronoi facet: its vertices in order, the normal from that order, and the squared length
@@ -291,44 +291,58 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     if (first_) {
         for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
             if (v->info().on_surface()) from.push_back(v);
-        // Vertex order by id, so that which cell represents an edge (the first found) does not
-        // depend on where the triangulation stores its vertices.
+        // In id order, so the jobs are listed in an order that does not depend on where the
+        // triangulation stores its vertices. (Which cell represents an edge does not matter:
+        // check_facet circulates around it from a canonical cell.)
         std::sort(from.begin(), from.end(), [](Vertex_handle x, Vertex_handle y) { return x->info().id < y->info().id; });
     } else {
         from.swap(touched_);
     }
-    std::vector<std::vector<EdgeJob>> per_vertex(from.size());
+    // A chunk of vertices at a time, each vertex's list deduplicated before it joins the jobs:
+    // an edge is seen from every cell around it, and the raw lists of all the E/N vertices of a
+    // 250 x 212 x 289 protein would be gigabytes.
+    constexpr std::size_t kChunk = std::size_t(1) << 15;
+    const auto by_edge = [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); };
+    const auto same_edge = [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; };
+    std::vector<EdgeJob> jobs;
+    std::vector<std::vector<EdgeJob>> per_vertex;
     tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 64), [&](const auto& r) {
-        auto& cells = stars.local();
-        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-            const Vertex_handle v = from[k];
-            auto& out = per_vertex[k];
-            gather_star(v, cells);
-            for (const Cell_handle& c : cells)
-                for (int i = 0; i < 4; ++i)
-                    for (int j = i + 1; j < 4; ++j) {
-                        const auto va = c->vertex(i), vb = c->vertex(j);
-                        if (first_ && va != v && vb != v) continue; // only the edges at v
-                        if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
-                        if (!va->info().on_surface() && !vb->info().on_surface()) continue;
-                        const auto ia = va->info().id, ib = vb->info().id;
-                        if (first_ && va->info().on_surface() && vb->info().on_surface() &&
-                            v->info().id != std::min(ia, ib))
-                            continue; // found from its other end
-                        out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), 0});
-                    }
+    for (std::size_t begin = 0; begin < from.size(); begin += kChunk) {
+        const std::size_t n = std::min(kChunk, from.size() - begin);
+        per_vertex.assign(n, {});
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const auto& r) {
+            auto& cells = stars.local();
+            for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                const Vertex_handle v = from[begin + k];
+                auto& out = per_vertex[k];
+                gather_star(v, cells);
+                for (const Cell_handle& c : cells)
+                    for (int i = 0; i < 4; ++i)
+                        for (int j = i + 1; j < 4; ++j) {
+                            const auto va = c->vertex(i), vb = c->vertex(j);
+                            if (first_ && va != v && vb != v) continue; // only the edges at v
+                            if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
+                            if (!va->info().on_surface() && !vb->info().on_surface()) continue;
+                            const auto ia = va->info().id, ib = vb->info().id;
+                            if (first_ && va->info().on_surface() && vb->info().on_surface() &&
+                                v->info().id != std::min(ia, ib))
+                                continue; // found from its other end
+                            out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), 0});
+                        }
+                std::stable_sort(out.begin(), out.end(), by_edge); // the first found of each edge stays first
+                out.erase(std::unique(out.begin(), out.end(), same_edge), out.end());
+            }
+        });
+        for (auto& list : per_vertex) {
+            for (EdgeJob& job : list) {
+                job.order = std::uint32_t(jobs.size());
+                jobs.push_back(job);
+            }
+            list = {};
         }
-    });
+    }
     first_ = false;
     touched_.clear();
-    std::vector<EdgeJob> jobs;
-    for (auto& list : per_vertex)
-        for (EdgeJob& job : list) {
-            job.order = std::uint32_t(jobs.size());
-            jobs.push_back(job);
-        }
-    per_vertex = {};
     for (const auto& [va, vb] : flagged_) {
         Cell_handle c;
         int i, j;
@@ -342,9 +356,7 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     tbb::parallel_sort(jobs.begin(), jobs.end(), [](const EdgeJob& x, const EdgeJob& y) {
         return std::tie(x.a, x.b, x.order) < std::tie(y.a, y.b, y.order);
     });
-    jobs.erase(std::unique(jobs.begin(), jobs.end(),
-                           [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; }),
-               jobs.end());
+    jobs.erase(std::unique(jobs.begin(), jobs.end(), same_edge), jobs.end());
 
     std::vector<std::optional<Candidate>> found(jobs.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size(), 256), [&](const auto& r) {

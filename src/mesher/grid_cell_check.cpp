@@ -31,7 +31,9 @@ std::optional<Candidate> check_one(const octree::SampleField::Reader& reader, Ve
         const auto w = field.index_to_world(gi + sc.t.back() * (ci - gi));
         const Point p(w[0], w[1], w[2]);
         const double d = CGAL::squared_distance(p, g->point());
-        if (d > best_d) {
+        // Ties go to the smaller point: the star's order depends on how the triangulation was
+        // built (initial_delaunay.h), the choice must not.
+        if (d > best_d || (d == best_d && p < best->p)) {
             best_d = d;
             best = Candidate{p, PointKind::Topology, std::sqrt(d), FacetKey{{g->info().id, 0, 0}}};
         }

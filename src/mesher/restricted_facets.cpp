@@ -168,7 +168,8 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                     gather_star(inserted_[first + i], cells);
                     for (const Cell_handle& c : cells)
                         for (int j = 0; j < 4; ++j) {
-                            // A facet through v is in two cells of the star: take it from one.
+                            // A facet through v is in two cells of the star: take it from one
+                            // (either: compute_facet_record walks the edge canonically).
                             if (j != c->index(inserted_[first + i]) && c->neighbor(j) < c) continue;
                             const Facet f(c, j);
                             if (!dt.is_infinite(f) && has_surface_vertex(f))

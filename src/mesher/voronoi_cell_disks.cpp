@@ -4,6 +4,7 @@
 
 #include "mesher/cell_surface_euler.h"
 #include "mesher/circumcenter.h"
+#include "mesher/vertex_star.h"
 #include "octree/cell_interpolant.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -199,17 +200,24 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
                                                     std::vector<Vertex_handle>& pending, double min_extent,
                                                     VoronoiCellDiskStats* stats)
 {
-    // Incident cells and neighbours are gathered serially (CGAL marks visited cells in the
-    // triangulation); circumcentres are computed in the parallel loop.
+    // The cells and neighbours around each vertex, gathered in parallel (gather_star: no shared
+    // visit marks). The neighbours are sorted by id: VoronoiCellPlanes clips in their order, so
+    // the rounded results must not depend on how the triangulation stores the star.
     std::vector<CellGeometry> geo(pending.size());
-    std::vector<Vertex_handle> nbs;
-    for (std::size_t i = 0; i < pending.size(); ++i) {
-        nbs.clear();
-        dt.incident_cells(pending[i], std::back_inserter(geo[i].cells));
-        dt.adjacent_vertices(pending[i], std::back_inserter(nbs));
-        for (const Vertex_handle& v : nbs)
-            if (!dt.is_infinite(v)) geo[i].neighbours.push_back(to_vdb(v->point()));
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 64), [&](const auto& r) {
+        std::vector<Vertex_handle> nbs;
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const Vertex_handle v = pending[i];
+            gather_star(v, geo[i].cells);
+            nbs.clear();
+            for (const Cell_handle& c : geo[i].cells)
+                for (int k = 0; k < 4; ++k)
+                    if (c->vertex(k) != v && !dt.is_infinite(c->vertex(k))) nbs.push_back(c->vertex(k));
+            std::sort(nbs.begin(), nbs.end(), [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
+            nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
+            for (const Vertex_handle& w : nbs) geo[i].neighbours.push_back(to_vdb(w->point()));
+        }
+    });
     enum class Verdict { Certified, Sampled, Violated, Unresolved };
     std::vector<Verdict> verdict(pending.size(), Verdict::Certified);
     std::vector<std::optional<Candidate>> found(pending.size());
