@@ -25,7 +25,8 @@ struct ConvertCell {
     void operator()(const ParallelTds::Cell&, Tds::Cell&) const {}
 };
 
-// Below this many points the lock grid and the copy cost more than the second thread saves.
+// Below this many points (a tenth of a second of sequential insertion) the lock grid and the copy
+// are not worth setting up. Not tuned: the meshes are the same either way.
 constexpr std::size_t kParallelMin = 20000;
 
 } // namespace
