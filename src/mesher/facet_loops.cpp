@@ -306,32 +306,26 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     const auto same_edge = [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; };
     std::vector<EdgeJob> jobs;
     std::vector<std::vector<EdgeJob>> per_vertex;
-    tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
     for (std::size_t begin = 0; begin < from.size(); begin += kChunk) {
-        const std::size_t n = std::min(kChunk, from.size() - begin);
-        per_vertex.assign(n, {});
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const auto& r) {
-            auto& cells = stars.local();
-            for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                const Vertex_handle v = from[begin + k];
-                auto& out = per_vertex[k];
-                gather_star(v, cells);
-                for (const Cell_handle& c : cells)
-                    for (int i = 0; i < 4; ++i)
-                        for (int j = i + 1; j < 4; ++j) {
-                            const auto va = c->vertex(i), vb = c->vertex(j);
-                            if (first_ && va != v && vb != v) continue; // only the edges at v
-                            if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
-                            if (!va->info().on_surface() && !vb->info().on_surface()) continue;
-                            const auto ia = va->info().id, ib = vb->info().id;
-                            if (first_ && va->info().on_surface() && vb->info().on_surface() &&
-                                v->info().id != std::min(ia, ib))
-                                continue; // found from its other end
-                            out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), 0});
-                        }
-                std::stable_sort(out.begin(), out.end(), by_edge); // the first found of each edge stays first
-                out.erase(std::unique(out.begin(), out.end(), same_edge), out.end());
-            }
+        const std::size_t end = std::min(begin + kChunk, from.size());
+        per_vertex.assign(end - begin, {});
+        for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
+            const Vertex_handle v = from[k];
+            auto& out = per_vertex[k - begin];
+            for (const Cell_handle& c : cells)
+                for (int i = 0; i < 4; ++i)
+                    for (int j = i + 1; j < 4; ++j) {
+                        const auto va = c->vertex(i), vb = c->vertex(j);
+                        if (first_ && va != v && vb != v) continue; // only the edges at v
+                        if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
+                        if (!va->info().on_surface() && !vb->info().on_surface()) continue;
+                        const auto ia = va->info().id, ib = vb->info().id;
+                        if (first_ && va->info().on_surface() && vb->info().on_surface() && v->info().id != std::min(ia, ib))
+                            continue; // found from its other end
+                        out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), 0});
+                    }
+            std::stable_sort(out.begin(), out.end(), by_edge); // the first found of each edge stays first
+            out.erase(std::unique(out.begin(), out.end(), same_edge), out.end());
         });
         for (auto& list : per_vertex) {
             for (EdgeJob& job : list) {

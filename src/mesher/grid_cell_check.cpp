@@ -7,15 +7,14 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <optional>
 
 namespace isodel::mesher {
 namespace {
 
 /// The crossing farthest from g on the segments from g to those of its Voronoi vertices (the
-/// circumcentres of \p cells) that lie on the other side of Sigma.
-std::optional<Candidate> check_one(const octree::SampleField::Reader& reader, Vertex_handle g,
+/// circumcentres of the finite cells of \p cells) that lie on the other side of Sigma.
+std::optional<Candidate> check_one(const Delaunay& dt, const octree::SampleField::Reader& reader, Vertex_handle g,
                                    const std::vector<Cell_handle>& cells, int max_cells)
 {
     const auto& field = reader.field();
@@ -24,6 +23,7 @@ std::optional<Candidate> check_one(const octree::SampleField::Reader& reader, Ve
     std::optional<Candidate> best;
     double best_d = -1;
     for (const Cell_handle& c : cells) {
+        if (dt.is_infinite(c)) continue;
         const auto ci = field.world_to_index(to_vdb(robust_circumcenter(c)));
         if ((octree::phi_at(reader, ci) >= 0) == g_inside) continue;
         const auto sc = octree::segment_crossings(reader, gi, ci, max_cells);
@@ -48,16 +48,9 @@ std::vector<Candidate> grid_cell_violations(const Delaunay& dt, const octree::Sa
 {
     std::vector<std::optional<Candidate>> found(pending.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
-    tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 64), [&](const auto& r) {
-        auto& reader = readers.local();
-        auto& cells = stars.local();
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            gather_star(pending[i], cells); // not CGAL's incident_cells: its visit marks are shared
-            cells.erase(std::remove_if(cells.begin(), cells.end(), [&](Cell_handle c) { return dt.is_infinite(c); }),
-                        cells.end());
-            found[i] = check_one(reader, pending[i], cells, max_cells);
-        }
+    // Stars by gather_star, not CGAL's incident_cells: its visit marks are shared.
+    for_each_star(pending, 0, pending.size(), [&](std::size_t i, const std::vector<Cell_handle>& cells) {
+        found[i] = check_one(dt, readers.local(), pending[i], cells, max_cells);
     });
     std::vector<Candidate> out;
     std::vector<Vertex_handle> still;

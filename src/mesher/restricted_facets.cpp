@@ -158,24 +158,18 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
         std::vector<std::vector<Found>> per_vertex;
         std::vector<Found> found;
         std::vector<char> known;
-        tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
         for (std::size_t first = 0; first < inserted_.size(); first += kChunk) {
-            const std::size_t n = std::min(kChunk, inserted_.size() - first);
-            per_vertex.assign(n, {});
-            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const auto& r) {
-                auto& cells = stars.local();
-                for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                    gather_star(inserted_[first + i], cells);
-                    for (const Cell_handle& c : cells)
-                        for (int j = 0; j < 4; ++j) {
-                            // A facet through v is in two cells of the star: take it from one
-                            // (either: compute_facet_record walks the edge canonically).
-                            if (j != c->index(inserted_[first + i]) && c->neighbor(j) < c) continue;
-                            const Facet f(c, j);
-                            if (!dt.is_infinite(f) && has_surface_vertex(f))
-                                per_vertex[i].push_back({facet_key(f), 0, f});
-                        }
-                }
+            const std::size_t end = std::min(first + kChunk, inserted_.size());
+            per_vertex.assign(end - first, {});
+            for_each_star(inserted_, first, end, [&](std::size_t i, const std::vector<Cell_handle>& cells) {
+                for (const Cell_handle& c : cells)
+                    for (int j = 0; j < 4; ++j) {
+                        // A facet through v is in two cells of the star: take it from one
+                        // (either: compute_facet_record walks the edge canonically).
+                        if (j != c->index(inserted_[i]) && c->neighbor(j) < c) continue;
+                        const Facet f(c, j);
+                        if (!dt.is_infinite(f) && has_surface_vertex(f)) per_vertex[i - first].push_back({facet_key(f), 0, f});
+                    }
             });
             found.clear();
             for (auto& list : per_vertex)

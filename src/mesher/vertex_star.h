@@ -6,6 +6,9 @@
 // round, and serially that was a third of a round's time on two threads.
 #include "mesher/delaunay.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <vector>
 
@@ -28,6 +31,21 @@ inline void gather_star(Vertex_handle v, std::vector<Cell_handle>& out)
             if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
         }
     }
+}
+
+/// Calls f(i, cells) for every i in [begin, end), in parallel, with cells the star of
+/// vertices[i] (gather_star); f may run concurrently for different i.
+template <class F>
+void for_each_star(const std::vector<Vertex_handle>& vertices, std::size_t begin, std::size_t end, F&& f)
+{
+    tbb::enumerable_thread_specific<std::vector<Cell_handle>> stars;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        auto& cells = stars.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            gather_star(vertices[i], cells);
+            f(i, cells);
+        }
+    });
 }
 
 } // namespace isodel::mesher
