@@ -106,6 +106,9 @@ struct TetStats {
     double min_dihedral_deg_delaunay = 0;
     std::size_t vertices_moved = 0, vertices_removed = 0, vertices_inserted = 0, flips = 0;
     double improvement_seconds = 0; ///< part of MeshStats::seconds["tets"]
+    /// MeshStats::seconds["tets"] by step: insert_g_prime, conformity_checks (M unchanged and
+    /// Theorem 3 for G'), crowding_points, region_labels, numbering, improvement, quality.
+    std::map<std::string, double> seconds;
 };
 
 /// Topology of one connected component of a closed surface mesh.

@@ -1,11 +1,11 @@
 #include "mesher/crowding_grid_points.h"
 
-#include "octree/cell_function.h"
-
 #include "mesher/circumcenter.h"
+#include "mesher/vertex_star.h"
+#include "octree/cell_function.h"
 #include "octree/cell_interpolant.h"
 
-#include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <cmath>
@@ -59,36 +59,40 @@ bool voronoi_cell_misses_sigma(const Delaunay& dt, Vertex_handle g, const std::v
     return true;
 }
 
-std::size_t remove_crowding_grid_points(Delaunay& dt, const octree::SampleField& field, double reach)
+std::vector<Vertex_handle> crowding_grid_points(const Delaunay& dt, const octree::SampleField& field, double reach)
 {
-    // Grid vertices with a surface neighbour within reach, in id order.
-    std::vector<Vertex_handle> near;
+    // Grid vertices with a surface neighbour within reach, found from the surface vertices'
+    // stars in parallel (CGAL's finite_edges walk over every edge took 2 s of the 128^3
+    // protein's tets phase), then in id order.
+    std::vector<Vertex_handle> surface;
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        if (v->info().on_surface()) surface.push_back(v);
+    std::vector<std::vector<Vertex_handle>> near_of(surface.size());
     const double r2 = reach * reach;
-    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-        Vertex_handle a = e->first->vertex(e->second), b = e->first->vertex(e->third);
-        if (a->info().on_surface() == b->info().on_surface()) continue;
-        if (a->info().on_surface()) std::swap(a, b);
-        if (a->info().kind == PointKind::Grid && CGAL::squared_distance(a->point(), b->point()) < r2) near.push_back(a);
-    }
+    for_each_star(surface, 0, surface.size(), [&](std::size_t i, const std::vector<Cell_handle>& cells) {
+        for (const Cell_handle& c : cells)
+            for (int j = 0; j < 4; ++j) {
+                const Vertex_handle a = c->vertex(j);
+                if (!dt.is_infinite(a) && a->info().kind == PointKind::Grid &&
+                    CGAL::squared_distance(a->point(), surface[i]->point()) < r2)
+                    near_of[i].push_back(a);
+            }
+    });
+    std::vector<Vertex_handle> near;
+    for (const auto& list : near_of) near.insert(near.end(), list.begin(), list.end());
     std::sort(near.begin(), near.end(), [](Vertex_handle x, Vertex_handle y) { return x->info().id < y->info().id; });
     near.erase(std::unique(near.begin(), near.end()), near.end());
 
-    // Certified on the unchanged triangulation, removed afterwards. Incident cells are gathered
-    // serially (CGAL marks visited cells in the triangulation), the certificates in parallel.
-    std::vector<std::vector<Cell_handle>> cells(near.size());
-    for (std::size_t i = 0; i < near.size(); ++i) dt.incident_cells(near[i], std::back_inserter(cells[i]));
+    // Certified on the unchanged triangulation (each certificate reads g's star), in parallel.
     std::vector<char> ok(near.size(), 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, near.size(), 64), [&](const auto& r) {
-        const octree::SampleField::Reader reader(field);
-        for (std::size_t i = r.begin(); i != r.end(); ++i) ok[i] = voronoi_cell_misses_sigma(dt, near[i], cells[i], reader);
+    tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
+    for_each_star(near, 0, near.size(), [&](std::size_t i, const std::vector<Cell_handle>& cells) {
+        ok[i] = voronoi_cell_misses_sigma(dt, near[i], cells, readers.local());
     });
-    std::size_t removed = 0;
+    std::vector<Vertex_handle> out;
     for (std::size_t i = 0; i < near.size(); ++i)
-        if (ok[i]) {
-            dt.remove(near[i]);
-            ++removed;
-        }
-    return removed;
+        if (ok[i]) out.push_back(near[i]);
+    return out;
 }
 
 } // namespace isodel::mesher

@@ -23,11 +23,11 @@
 
 namespace isodel::mesher {
 
-/// Removes from \p dt the grid points closer than \p reach (world units) to a vertex on M whose
-/// Voronoi cell is certified to miss Sigma. Returns how many were removed. Deterministic: the
-/// candidates are certified on the unchanged triangulation, then removed in id order.
-/// \post FacetCache instances over \p dt are stale (rebuild them).
-std::size_t remove_crowding_grid_points(Delaunay& dt, const octree::SampleField& field, double reach);
+/// The grid points of \p dt closer than \p reach (world units) to a vertex on M whose Voronoi
+/// cell is certified to miss Sigma, in id order: all of them can go at once (above), through
+/// FacetCache::remove so the cache stays current. Deterministic: certified on the unchanged
+/// triangulation.
+std::vector<Vertex_handle> crowding_grid_points(const Delaunay& dt, const octree::SampleField& field, double reach);
 
 /// Whether the Voronoi cell of \p g misses Sigma, by the certificate above; \p cells are g's
 /// incident cells. False when the cell is unbounded or its box spans more than \p max_cells

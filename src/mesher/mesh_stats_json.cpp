@@ -51,8 +51,10 @@ std::string to_json(const MeshStats& s)
           << ", \"max_radius_edge_off_surface\": " << t.max_radius_edge_off_surface
           << ",\n    \"min_dihedral_deg_delaunay\": " << t.min_dihedral_deg_delaunay
           << ", \"vertices_moved\": " << t.vertices_moved << ", \"vertices_removed\": " << t.vertices_removed << ", \"vertices_inserted\": " << t.vertices_inserted << ", \"flips\": " << t.flips
-          << ", \"improvement_seconds\": " << t.improvement_seconds
-          << ",\n    \"dihedral_histogram_10deg\": [";
+          << ", \"improvement_seconds\": " << t.improvement_seconds << ",\n    \"seconds\": {";
+        for (auto it = t.seconds.begin(); it != t.seconds.end(); ++it)
+            o << (it == t.seconds.begin() ? "" : ", ") << "\"" << it->first << "\": " << it->second;
+        o << "},\n    \"dihedral_histogram_10deg\": [";
         for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
         o << "]}";
     }

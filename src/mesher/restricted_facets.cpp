@@ -18,6 +18,14 @@ namespace {
 
 Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
+/// Only such facets are recorded: a Voronoi edge dual to a facet of grid points alone never
+/// meets Sigma (Theorem 3 keeps G's Voronoi cells off it).
+bool has_surface_vertex(const Facet& f)
+{
+    const auto vs = facet_vertices(f);
+    return vs[0]->info().on_surface() || vs[1]->info().on_surface() || vs[2]->info().on_surface();
+}
+
 } // namespace
 
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
@@ -76,9 +84,11 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     dt.find_conflicts(p, loc, std::back_inserter(boundary), std::back_inserter(conflicts), std::back_inserter(internal));
     // The facets the insertion replaces: each one once (an internal facet is shared by two
     // conflict cells), and a boundary facet too, since its other cell is replaced.
+    // Only facets with an E/N vertex are ever recorded (update()): the others, most of them when
+    // G' is inserted far from Sigma, need no key and no lookup.
     for (const auto* facets : {&boundary, &internal})
         for (const Facet& f : *facets)
-            if (!dt.is_infinite(f)) {
+            if (!dt.is_infinite(f) && has_surface_vertex(f)) {
                 const FacetKey k = facet_key(f);
                 if (map_.erase(k)) changed_.push_back(k);
             }
@@ -91,6 +101,40 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     v->info() = info;
     inserted_.push_back(v);
     return v;
+}
+
+void FacetCache::remove(Delaunay& dt, const std::vector<Vertex_handle>& vertices)
+{
+    std::vector<Vertex_handle> link;
+    std::vector<Cell_handle> cells;
+    for (const Vertex_handle& v : vertices) {
+        cells.clear();
+        dt.incident_cells(v, std::back_inserter(cells));
+        for (const Cell_handle& c : cells)
+            for (int j = 0; j < 4; ++j) {
+                const Facet f(c, j);
+                if (scanned_ && !dt.is_infinite(f) && has_surface_vertex(f)) {
+                    const FacetKey k = facet_key(f);
+                    if (map_.erase(k)) changed_.push_back(k);
+                }
+                const Vertex_handle w = c->vertex(j);
+                if (w != v && !dt.is_infinite(w)) link.push_back(w);
+            }
+        dt.remove(v);
+    }
+    // A vertex removed later in the batch may be in an earlier one's link, or among the points
+    // inserted since the last update: drop those handles (compared, never dereferenced; no
+    // vertex is created meanwhile, so no slot is reused). The rest go in id order, so the
+    // facets update() finds do not depend on memory layout.
+    std::vector<Vertex_handle> gone(vertices);
+    std::sort(gone.begin(), gone.end());
+    const auto removed = [&](const Vertex_handle& w) { return std::binary_search(gone.begin(), gone.end(), w); };
+    inserted_.erase(std::remove_if(inserted_.begin(), inserted_.end(), removed), inserted_.end());
+    if (!scanned_) return; // the first update() scans everything anyway
+    link.erase(std::remove_if(link.begin(), link.end(), removed), link.end());
+    std::sort(link.begin(), link.end(), [](const Vertex_handle& a, const Vertex_handle& b) { return a->info().id < b->info().id; });
+    link.erase(std::unique(link.begin(), link.end()), link.end());
+    inserted_.insert(inserted_.end(), link.begin(), link.end());
 }
 
 void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, int max_cells)
@@ -131,10 +175,6 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
             added.push_back({st->facet, t.key, &st->record, st->record.crossings, st->record.overflow, on});
         }
         todo.clear();
-    };
-    const auto has_surface_vertex = [](const Facet& f) {
-        const auto vs = facet_vertices(f);
-        return vs[0]->info().on_surface() || vs[1]->info().on_surface() || vs[2]->info().on_surface();
     };
     if (initial) {
         // Every facet once, in chunks: the to-do list of the whole first triangulation would be

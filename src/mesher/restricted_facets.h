@@ -41,8 +41,7 @@ public:
     /// the triangulation, and the active list is sorted by key, so the result is deterministic.
     void update(const Delaunay& dt, const octree::SampleField& field, int max_cells);
 
-    /// Forgets every record: the next update() rescans the whole triangulation (after vertex
-    /// removals, which invalidate the stored cell handles).
+    /// Forgets every record: the next update() rescans the whole triangulation.
     void reset()
     {
         for (std::uint32_t id = 0; id < stars_.size(); ++id)
@@ -61,6 +60,13 @@ public:
     /// Inserts \p p (located from \p hint) and returns its vertex, or a null handle when p is
     /// already a vertex.
     Vertex_handle insert(Delaunay& dt, const Point& p, VertexInfo info, Cell_handle hint = Cell_handle());
+
+    /// Removes \p vertices from \p dt, in order, keeping the cache current: the records of the
+    /// facets of each vertex's cells go (the facets through it vanish, the others of those
+    /// cells border the re-triangulated hole, so their Voronoi edges change), and the next
+    /// update() computes the facets around the hole's vertices, where every new cell is. A
+    /// removal leaves the other cells, and so their stored handles, as they were.
+    void remove(Delaunay& dt, const std::vector<Vertex_handle>& vertices);
 
     struct Entry {
         Facet facet;

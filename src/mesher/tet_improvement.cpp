@@ -134,6 +134,7 @@ bool Improver::try_smooth(std::int32_t v)
     ascend_star(v, s, best_x, best, current_bad);
     if (!(best > current + kMargin)) return false;
     m_.vertices[std::size_t(v)] = best_x;
+    ++moved_[std::size_t(v)];
     for (std::int32_t t : s) {
         qual_[std::size_t(t)] = quality_of(tets_[t]);
         touch(tets_[t]);

@@ -6,8 +6,17 @@ namespace isodel::mesher::tet_improver {
 
 bool Improver::insert_vertex(std::size_t t)
 {
+    if (const auto memo = insert_failed_.find(t); memo != insert_failed_.end()) {
+        bool same = true;
+        for (std::int32_t u : memo->second.tets) same &= alive_[std::size_t(u)] != 0;
+        for (const auto& [w, moves] : memo->second.vertices) same &= moved_[std::size_t(w)] == moves;
+        if (same) return false; // nothing it reads has changed since it failed (insert_failed_)
+    }
     const Tet T = tets_[t];
     const std::int32_t region = region_[t];
+    FailedInsertion read; // (the candidates come from T's vertices, which cavity {t} holds)
+    read.tets.push_back(std::int32_t(t));
+    for (std::int32_t w : T) read.vertices.emplace_back(w, moved_[std::size_t(w)]);
     std::vector<V3> cand;
     for (int j = 0; j < 4; ++j) {
         const V3 &a = P(T[(j + 1) & 3]), &b = P(T[(j + 2) & 3]), &c = P(T[(j + 3) & 3]);
@@ -36,7 +45,12 @@ bool Improver::insert_vertex(std::size_t t)
     for (std::size_t i = 0; i < cand.size(); ++i) {
         std::vector<std::int32_t> cavity;
         std::vector<Tet> cone;
-        if (!cavity_for(t, region, cand[i], cavity, cone)) continue;
+        const bool ok = cavity_for(t, region, cand[i], cavity, cone, read.tets);
+        for (std::int32_t c : cavity) {
+            read.tets.push_back(c);
+            for (std::int32_t w : tets_[c]) read.vertices.emplace_back(w, moved_[std::size_t(w)]);
+        }
+        if (!ok) continue;
         double old_q = kBest, new_q = kBest;
         for (std::int32_t c : cavity) old_q = std::min(old_q, q(std::size_t(c)));
         for (const Tet& x : cone) new_q = std::min(new_q, quality(x[0] < 0 ? cand[i] : P(x[0]), P(x[1]), P(x[2]), P(x[3])));
@@ -47,11 +61,21 @@ bool Improver::insert_vertex(std::size_t t)
             best_cone = std::move(cone);
         }
     }
-    if (best_i == cand.size()) return false;
+    const auto failed = [&] {
+        for (auto* v : {&read.tets}) {
+            std::sort(v->begin(), v->end());
+            v->erase(std::unique(v->begin(), v->end()), v->end());
+        }
+        std::sort(read.vertices.begin(), read.vertices.end());
+        read.vertices.erase(std::unique(read.vertices.begin(), read.vertices.end()), read.vertices.end());
+        insert_failed_[t] = std::move(read);
+        return false;
+    };
+    if (best_i == cand.size()) return failed();
     const auto v = std::int32_t(m_.vertices.size());
     m_.vertices.push_back(cand[best_i]);
     star_.emplace_back();
-    for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->push_back(0);
+    for (auto* memo : {&version_, &smooth_failed_, &moved_, &free_at_}) memo->push_back(0);
     free_.push_back(0);
     for (Tet& x : best_cone) x[0] = v;
     if (replace(best_cavity, best_cone)) {
@@ -60,13 +84,13 @@ bool Improver::insert_vertex(std::size_t t)
     }
     m_.vertices.pop_back(); // the volume check refused the cone: no vertex without tets
     star_.pop_back();
-    for (auto* memo : {&version_, &smooth_failed_, &free_at_}) memo->pop_back();
+    for (auto* memo : {&version_, &smooth_failed_, &moved_, &free_at_}) memo->pop_back();
     free_.pop_back();
-    return false;
+    return failed();
 }
 
 bool Improver::cavity_for(std::size_t t, std::int32_t region, const V3& x, std::vector<std::int32_t>& cavity,
-                          std::vector<Tet>& cone) const
+                          std::vector<Tet>& cone, std::vector<std::int32_t>& looked_at) const
 {
     constexpr std::size_t kMaxCavity = 64;
     const auto in_cavity = [&](std::int32_t u) { return std::find(cavity.begin(), cavity.end(), u) != cavity.end(); };
@@ -88,6 +112,7 @@ bool Improver::cavity_for(std::size_t t, std::int32_t region, const V3& x, std::
         const auto [c, j] = queue.back();
         queue.pop_back();
         const std::int32_t across = neighbour(c, j);
+        if (across >= 0) looked_at.push_back(across);
         if (across >= 0 && in_cavity(across)) continue;
         if (sees(coned(tets_[c], j))) continue;
         if (across < 0 || region_[across] != region || cavity.size() >= kMaxCavity) return false;
@@ -98,6 +123,7 @@ bool Improver::cavity_for(std::size_t t, std::int32_t region, const V3& x, std::
     for (std::int32_t c : cavity)
         for (int j = 0; j < 4; ++j) {
             const std::int32_t across = neighbour(c, j);
+            if (across >= 0) looked_at.push_back(across);
             if (across >= 0 && in_cavity(across)) continue;
             cone.push_back(coned(tets_[c], j));
             if (!sees(cone.back())) return false;

@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <chrono>
 #include <sstream>
-#include <unordered_map>
 
 namespace isodel::mesher {
 namespace {
@@ -70,6 +69,13 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
                           const VolumeMeshParams& params, TetStats& st)
 {
     InterruptScope scope(params.interrupter, "tets");
+    // Where the time goes, step by step (TetStats::seconds).
+    auto lap_start = std::chrono::steady_clock::now();
+    const auto lap = [&](const char* step) {
+        const auto now = std::chrono::steady_clock::now();
+        st.seconds[step] += std::chrono::duration<double>(now - lap_start).count();
+        lap_start = now;
+    };
     // 1. G', in Hilbert order (CGAL's spatial_sort: biased randomised insertion order with a
     // fixed seed, so deterministic). Raster order would be quadratic here: far from Sigma the
     // box is empty, and each point of a raster row conflicts with cells spanning the whole row.
@@ -94,6 +100,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
         if ((i & 0xFFFF) == 0) scope.check(int(40 * i / pts.size()));
     }
     st.g_prime = added.size();
+    lap("insert_g_prime");
 
     // 2. Conformity, checked rather than assumed: M recomputed from the new triangulation, and
     // Theorem 3 for every G' point (its Voronoi cell stays on its own side of Sigma).
@@ -118,19 +125,23 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
         throw GuaranteeViolated(os.str());
     }
     scope.check(70);
+    lap("conformity_checks");
 
     // 3. Slivers (crowding_grid_points.h): grid points within a quarter voxel of a vertex of M
     // whose Voronoi cell provably misses Sigma are removed; M is exactly unchanged, and checked.
-    st.grid_points_removed = remove_crowding_grid_points(dt, field, 0.25 * field.min_voxel_edge());
-    if (st.grid_points_removed) {
-        cache.reset();
+    const std::vector<Vertex_handle> crowding = crowding_grid_points(dt, field, 0.25 * field.min_voxel_edge());
+    st.grid_points_removed = crowding.size();
+    if (!crowding.empty()) {
+        cache.remove(dt, crowding);
         cache.update(dt, field, params.max_cells_walk);
         check_surface_unchanged(dt, cache, surface, "removing grid points next to M (certificate unsound)");
     }
     scope.check(75);
+    lap("crowding_points");
 
     // 4. Inside/outside labels consistent with M (region_labels.h).
     const RegionLabels label = region_labels(dt, cache);
+    lap("region_labels");
 
     // 5. Numbering: M's vertices first, in surface.vertices order (extract_surface sorts them by
     // id), then the other vertices of the kept tetrahedra by id: independent of memory layout.
@@ -140,35 +151,32 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
             for (const auto& v : facet_vertices(e.facet)) surface_ids.push_back(v->info().id);
     std::sort(surface_ids.begin(), surface_ids.end());
     surface_ids.erase(std::unique(surface_ids.begin(), surface_ids.end()), surface_ids.end());
-    std::unordered_map<std::uint32_t, std::int32_t> index;
-    index.reserve(dt.number_of_vertices());
+    // Ids are dense (the mesher's counter): the new numbering is an array by id.
+    std::vector<std::int32_t> index(*params.next_id, -1);
     for (std::size_t i = 0; i < surface_ids.size(); ++i) index[surface_ids[i]] = std::int32_t(i);
 
     const bool keep_in = params.region == TetRegion::Inside || params.region == TetRegion::Both;
     const bool keep_out = params.region == TetRegion::Outside || params.region == TetRegion::Both;
-    std::vector<std::pair<std::uint32_t, Vertex_handle>> others;
+    std::vector<Vertex_handle> other(*params.next_id); // the other kept vertices, by id
     std::vector<std::pair<std::array<Vertex_handle, 4>, std::int8_t>> kept;
     for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
         const std::int8_t l = label(Cell_handle(c));
         if (!(l == 1 ? keep_in : keep_out)) continue;
         kept.push_back({{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, l});
         for (int j = 0; j < 4; ++j)
-            if (!index.count(c->vertex(j)->info().id)) others.emplace_back(c->vertex(j)->info().id, c->vertex(j));
+            if (index[c->vertex(j)->info().id] < 0) other[c->vertex(j)->info().id] = c->vertex(j);
     }
-    std::sort(others.begin(), others.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    others.erase(std::unique(others.begin(), others.end(),
-                             [](const auto& a, const auto& b) { return a.first == b.first; }),
-                 others.end());
 
     TetMesh mesh;
     mesh.vertices = surface.vertices;
-    for (const auto& [id, v] : others) {
-        index[id] = std::int32_t(mesh.vertices.size());
-        mesh.vertices.push_back({v->point().x(), v->point().y(), v->point().z()});
-    }
+    for (std::uint32_t id = 0; id < other.size(); ++id)
+        if (const Vertex_handle v = other[id]; v != Vertex_handle()) {
+            index[id] = std::int32_t(mesh.vertices.size());
+            mesh.vertices.push_back({v->point().x(), v->point().y(), v->point().z()});
+        }
     for (const auto& [vs, l] : kept) {
-        mesh.tets.push_back({index.at(vs[0]->info().id), index.at(vs[1]->info().id), index.at(vs[2]->info().id),
-                             index.at(vs[3]->info().id)});
+        mesh.tets.push_back({index[vs[0]->info().id], index[vs[1]->info().id], index[vs[2]->info().id],
+                             index[vs[3]->info().id]});
         mesh.tet_region.push_back(l);
     }
     kept.clear();
@@ -178,6 +186,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     // from M; M, the regions and their volumes stay. Sequential on the canonical order, so the
     // result does not depend on the thread count.
     canonical_order(mesh);
+    lap("numbering");
     if (params.improve) {
         const auto t0 = std::chrono::steady_clock::now();
         const TetImprovementStats imp = improve_tets(mesh, surface.vertices.size(), TetImprovementParams());
@@ -189,11 +198,13 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
         st.improvement_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     scope.check(95);
+    lap("improvement");
 
     canonical_order(mesh);
     mesh.triangles = surface.triangles;
     measure_tet_quality(mesh, surface.vertices.size(), st);
     st.volume_enclosed_by_surface = enclosed_volume(surface);
+    lap("quality");
     return mesh;
 }
 

@@ -37,6 +37,17 @@ TEST_CASE("mesh --tets: real readers load .mesh, .vtu and .msh with the same cou
             CHECK((region == "both") == (nout > 0));
             CHECK(t["volume_inside"].num ==
                   Approx(t["volume_enclosed_by_surface"].num).epsilon(1e-9));
+            // Where the tets phase's time went: every step, adding up to at most the phase.
+            double steps = 0;
+            for (const char* step : {"insert_g_prime", "conformity_checks", "crowding_points", "region_labels",
+                                     "numbering", "improvement", "quality"}) {
+                INFO(step);
+                CHECK(t["seconds"][step].num >= 0);
+                CHECK(t["seconds"].has(step));
+                steps += t["seconds"][step].num;
+            }
+            CHECK(steps <= s["seconds"]["tets"].num + 1e-6);
+            CHECK(t["seconds"]["improvement"].num >= t["improvement_seconds"].num);
             const RunResult py = run("/usr/bin/python3 " + shell_quote(readers_script()) + " " + shell_quote(tets) +
                                          " " + std::to_string(nv) + " " + std::to_string(ntri) + " " +
                                          std::to_string(nin) + " " + std::to_string(nout),

@@ -6,6 +6,7 @@
 #include "mesher_test_support.h"
 
 #include "mesher/crowding_grid_points.h"
+#include "mesher/restricted_facets.h"
 
 #include <random>
 
@@ -71,7 +72,11 @@ TEST_CASE("crowding grid points: removal takes the certified neighbours of M onl
     const std::size_t before = s.dt.number_of_vertices();
     // Samples at x = 2 are 0.3 from their E point, x = 3 are 0.7: reach 0.35 takes x = 2 only,
     // and not (2, 2, 2), whose cell meets Sigma.
-    const std::size_t removed = remove_crowding_grid_points(s.dt, s.field, 0.35);
+    const std::vector<Vertex_handle> crowding = crowding_grid_points(s.dt, s.field, 0.35);
+    const std::size_t removed = crowding.size();
+    for (std::size_t i = 1; i < crowding.size(); ++i) CHECK(crowding[i - 1]->info().id < crowding[i]->info().id);
+    FacetCache cache;
+    cache.remove(s.dt, crowding);
     CHECK(removed > 0);
     CHECK(s.dt.number_of_vertices() == before - removed);
     CHECK(s.dt.is_valid());

@@ -2,7 +2,8 @@
 // records of the facets an insertion destroys, update() computes those of the new ones, and
 // only facets whose Voronoi edge crosses Sigma (or left its bound) keep a record. After any
 // sequence of insertions and updates, its active facets and restricted stars must equal those
-// of a fresh cache scanning the same triangulation.
+// of a fresh cache scanning the same triangulation; so must they after remove() takes vertices
+// out (the tets phase removes grid points next to M that way).
 #include <catch2/catch.hpp>
 
 #include "mesher_test_support.h"
@@ -68,6 +69,58 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
         fresh.update(dt, field, 1000);
         const Summary a = summarise(cache), b = summarise(fresh);
         CHECK(active > 0);
+        CHECK(a.active.size() == b.active.size());
+        CHECK(a.active == b.active);
+        CHECK(a.stars == b.stars);
+    }
+}
+
+TEST_CASE("facet cache: incremental records equal a fresh scan after removals", "[mesher][facet_cache]")
+{
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+        INFO("random 5^3 volume, seed " << seed);
+        const auto grid = testing::random_volume(5, seed, false);
+        const octree::SampleField field(grid, 0.0, Inside::Above);
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(0.5, 5.5);
+        Delaunay dt;
+        std::uint32_t id = 0;
+        for (int z = 0; z <= 6; ++z)
+            for (int y = 0; y <= 6; ++y)
+                for (int x = 0; x <= 6; ++x) dt.insert(Point(x, y, z))->info() = VertexInfo{id++, PointKind::Grid};
+        for (int i = 0; i < 150; ++i)
+            dt.insert(Point(u(rng), u(rng), u(rng)))->info() = VertexInfo{id++, PointKind::Edge};
+        FacetCache cache;
+        cache.update(dt, field, 1000);
+        std::size_t removed = 0;
+        for (int round = 0; round < 6; ++round) {
+            // Inserted points, some removed again before the update, and older vertices of
+            // every kind (grid points on the hull too), neighbours among them.
+            std::vector<Vertex_handle> fresh;
+            for (int i = 0; i < 20; ++i) {
+                const auto kind = i % 3 == 0 ? PointKind::Grid : PointKind::Topology;
+                const Vertex_handle v = cache.insert(dt, Point(u(rng), u(rng), u(rng)), VertexInfo{id, kind});
+                if (v != Vertex_handle()) ++id, fresh.push_back(v);
+            }
+            std::vector<Vertex_handle> batch(fresh.begin(), fresh.begin() + std::ptrdiff_t(fresh.size() / 4));
+            std::vector<Vertex_handle> all;
+            for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) all.push_back(v);
+            std::sort(all.begin(), all.end(), [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
+            for (std::size_t i = std::size_t(round); i < all.size(); i += 17)
+                if (std::find(batch.begin(), batch.end(), all[i]) == batch.end()) batch.push_back(all[i]);
+            const Vertex_handle first = batch.front();
+            for (const Vertex_handle& n : std::vector<Vertex_handle>{first->cell()->vertex(0), first->cell()->vertex(1)})
+                if (!dt.is_infinite(n) && std::find(batch.begin(), batch.end(), n) == batch.end()) batch.push_back(n);
+            removed += batch.size();
+            cache.remove(dt, batch);
+            cache.update(dt, field, 1000);
+            if (round % 2 == 0) CHECK(cache.active().size() > 0);
+        }
+        REQUIRE(dt.is_valid());
+        FacetCache fresh;
+        fresh.update(dt, field, 1000);
+        const Summary a = summarise(cache), b = summarise(fresh);
+        CHECK(removed > 60);
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
