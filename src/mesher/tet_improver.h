@@ -296,6 +296,9 @@ private:
         std::vector<std::pair<std::int32_t, std::uint32_t>> vertices;
     };
     std::unordered_map<std::size_t, FailedInsertion> insert_failed_;
+    // insert_vertex()'s "already read" marks: equal to read_stamp_ when read by this attempt.
+    std::uint32_t read_stamp_ = 0;
+    std::vector<std::uint32_t> tet_read_, vertex_read_;
     mutable std::vector<std::uint32_t> free_at_;
     mutable std::vector<char> free_;
 };

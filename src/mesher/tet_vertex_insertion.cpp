@@ -14,9 +14,25 @@ bool Improver::insert_vertex(std::size_t t)
     }
     const Tet T = tets_[t];
     const std::int32_t region = region_[t];
-    FailedInsertion read; // (the candidates come from T's vertices, which cavity {t} holds)
-    read.tets.push_back(std::int32_t(t));
-    for (std::int32_t w : T) read.vertices.emplace_back(w, moved_[std::size_t(w)]);
+    // What this attempt reads, each tet and vertex once (stamped: sorting the lists cost more
+    // than the memo saved). The candidates come from T's vertices, which cavity {t} holds.
+    FailedInsertion read;
+    ++read_stamp_;
+    tet_read_.resize(tets_.size(), 0);
+    vertex_read_.resize(m_.vertices.size(), 0);
+    const auto read_tet = [&](std::int32_t u) {
+        if (tet_read_[std::size_t(u)] != read_stamp_) tet_read_[std::size_t(u)] = read_stamp_, read.tets.push_back(u);
+    };
+    const auto read_cavity = [&](const std::vector<std::int32_t>& cavity) {
+        for (std::int32_t c : cavity) {
+            read_tet(c);
+            for (std::int32_t w : tets_[c])
+                if (vertex_read_[std::size_t(w)] != read_stamp_)
+                    vertex_read_[std::size_t(w)] = read_stamp_, read.vertices.emplace_back(w, moved_[std::size_t(w)]);
+        }
+    };
+    read_cavity({std::int32_t(t)});
+    std::vector<std::int32_t> looked_at;
     std::vector<V3> cand;
     for (int j = 0; j < 4; ++j) {
         const V3 &a = P(T[(j + 1) & 3]), &b = P(T[(j + 2) & 3]), &c = P(T[(j + 3) & 3]);
@@ -45,11 +61,10 @@ bool Improver::insert_vertex(std::size_t t)
     for (std::size_t i = 0; i < cand.size(); ++i) {
         std::vector<std::int32_t> cavity;
         std::vector<Tet> cone;
-        const bool ok = cavity_for(t, region, cand[i], cavity, cone, read.tets);
-        for (std::int32_t c : cavity) {
-            read.tets.push_back(c);
-            for (std::int32_t w : tets_[c]) read.vertices.emplace_back(w, moved_[std::size_t(w)]);
-        }
+        looked_at.clear();
+        const bool ok = cavity_for(t, region, cand[i], cavity, cone, looked_at);
+        read_cavity(cavity);
+        for (std::int32_t u : looked_at) read_tet(u);
         if (!ok) continue;
         double old_q = kBest, new_q = kBest;
         for (std::int32_t c : cavity) old_q = std::min(old_q, q(std::size_t(c)));
@@ -62,12 +77,6 @@ bool Improver::insert_vertex(std::size_t t)
         }
     }
     const auto failed = [&] {
-        for (auto* v : {&read.tets}) {
-            std::sort(v->begin(), v->end());
-            v->erase(std::unique(v->begin(), v->end()), v->end());
-        }
-        std::sort(read.vertices.begin(), read.vertices.end());
-        read.vertices.erase(std::unique(read.vertices.begin(), read.vertices.end()), read.vertices.end());
         insert_failed_[t] = std::move(read);
         return false;
     };
