@@ -8,7 +8,7 @@
 namespace isodel::mesher {
 namespace tet_improver {
 
-TetImprovementStats Improver::run(const TetImprovementParams& params)
+TetImprovementStats Improver::run(const TetImprovementParams& params, std::vector<std::int32_t>* renumbered)
 {
     TetImprovementStats st;
     double worst = kBest;
@@ -56,6 +56,7 @@ TetImprovementStats Improver::run(const TetImprovementParams& params)
             m_.tets.push_back(x);
             m_.tet_region.push_back(region_[t]);
         }
+    if (renumbered) *renumbered = std::move(renumber);
     return st;
 }
 
@@ -289,11 +290,6 @@ double min_dihedral_deg(const tet_improver::V3& a, const tet_improver::V3& b, co
                         const tet_improver::V3& d)
 {
     return tet_improver::degrees(tet_improver::quality(a, b, c, d));
-}
-
-TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, const TetImprovementParams& params)
-{
-    return tet_improver::Improver(mesh, surface_vertices, params.target_deg).run(params);
 }
 
 } // namespace isodel::mesher

@@ -25,7 +25,17 @@
 // Nothing changes a vertex of M, a triangle of M (its two sides are different regions, or it
 // bounds the mesh) or a region tag, so the inside region's boundary stays M exactly and its
 // volume stays the volume M encloses. Each pass visits the tets below the target angle in a
-// fixed order (by angle, then by vertex indices), so the result does not depend on threads.
+// fixed order (by angle, then by vertex indices).
+//
+// In parallel, by blocks (tet_improvement_blocks.cpp): each tet goes to the cube of side
+// block_size holding its centroid, and the blocks with bad tets are improved concurrently, each
+// by the sequential improver on its own tets alone. That is safe without locks: every move
+// above keeps the boundary of the tets it is given, and a vertex moves or goes only when its
+// whole star is among them (a closed star: a tet mesh's link of an interior vertex is one
+// sphere), so no two blocks change the same tet or vertex, or read what another changes.
+// Vertices on a block's boundary stay; a second sweep over blocks shifted by half a side gives
+// most of them an interior. The blocks are a fixed function of the geometry and their results
+// are merged in block order, so the mesh does not depend on the thread count.
 #include <isodel/surface_mesh.h>
 
 #include <cstddef>
@@ -34,7 +44,8 @@ namespace isodel::mesher {
 
 struct TetImprovementParams {
     double target_deg = 15.0;   ///< work on tets whose smallest dihedral angle is below this
-    int max_passes = 10;        ///< bound on the sweeps over the bad tets
+    int max_passes = 10;        ///< bound on the sweeps over the bad tets (per block)
+    double block_size = 0;      ///< world units; 0: the whole mesh as one block, serially
 };
 
 struct TetImprovementStats {

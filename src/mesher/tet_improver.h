@@ -79,7 +79,9 @@ public:
         for (std::size_t t = 0; t < m.tets.size(); ++t) add(m.tets[t], m.tet_region[t]);
     }
 
-    TetImprovementStats run(const TetImprovementParams& params);
+    /// Improves the tets, then writes them back into the mesh given to the constructor, its
+    /// vertices compacted: \p renumbered (if given) gets each vertex's new index, -1 if removed.
+    TetImprovementStats run(const TetImprovementParams& params, std::vector<std::int32_t>* renumbered = nullptr);
 
 private:
     const V3& P(std::int32_t v) const { return m_.vertices[std::size_t(v)]; }

@@ -189,7 +189,11 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     lap("numbering");
     if (params.improve) {
         const auto t0 = std::chrono::steady_clock::now();
-        const TetImprovementStats imp = improve_tets(mesh, surface.vertices.size(), TetImprovementParams());
+        // Blocks of 16 voxels: ~500 on a 128^3 volume, enough to keep every thread busy, and
+        // large enough that few bad tets sit on a block's boundary in both sweeps.
+        TetImprovementParams ip;
+        ip.block_size = 16 * field.min_voxel_edge();
+        const TetImprovementStats imp = improve_tets(mesh, surface.vertices.size(), ip);
         st.min_dihedral_deg_delaunay = imp.min_dihedral_before_deg;
         st.vertices_moved = imp.vertices_moved;
         st.vertices_removed = imp.vertices_removed;
