@@ -173,10 +173,38 @@ TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, co
     }
 
     // What the block boundaries held back: one last serial block, the tets within two vertex
-    // rings of the bad ones (every vertex of a bad tet and of its neighbours then has its whole
-    // star in it).
+    // rings of those bad tets (every vertex of such a tet and of its neighbours then has its
+    // whole star in it).
     {
-        const std::vector<char> bad = find_bad();
+        std::vector<char> bad = find_bad();
+        // A bad tet that sat well inside its block in one of the sweeps (three of its longest
+        // edges from every face) had every move tried there: only the others seed the last
+        // block. On the 128^3 protein that leaves 4407 of 11398 bad tets and the last block
+        // 1.97 s instead of 3.1 s; the six volumes compared got the same angles either way.
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
+            for (std::size_t t = r.begin(); t != r.end(); ++t) {
+                if (!bad[t]) continue;
+                const Tet& x = mesh.tets[t];
+                V3 c{0, 0, 0};
+                double longest = 0;
+                for (int i = 0; i < 4; ++i) {
+                    const V3& p = mesh.vertices[std::size_t(x[i])];
+                    for (int k = 0; k < 3; ++k) c[k] += 0.25 * p[k];
+                    for (int j = i + 1; j < 4; ++j)
+                        longest = std::max(longest, tet_improver::norm(tet_improver::sub(p, mesh.vertices[std::size_t(x[j])])));
+                }
+                const double margin = 3 * longest;
+                for (int sweep = 0; sweep < 2 && bad[t]; ++sweep) {
+                    bool inside = true;
+                    for (int k = 0; k < 3; ++k) {
+                        const double u = c[k] + 0.5 * sweep * params.block_size;
+                        const double off = u - std::floor(u / params.block_size) * params.block_size;
+                        inside &= off >= margin && params.block_size - off >= margin;
+                    }
+                    if (inside) bad[t] = 0;
+                }
+            }
+        });
         std::vector<char> near(mesh.vertices.size(), 0), in(mesh.tets.size(), 0);
         for (std::size_t t = 0; t < mesh.tets.size(); ++t)
             if (bad[t])
