@@ -8,7 +8,11 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace isodel::mesher {
 namespace {
@@ -16,7 +20,7 @@ namespace {
 using tet_improver::Tet;
 using tet_improver::V3;
 
-/// One block's tets, improved on local numbering; what merge() needs to write them back.
+/// One block's tets, improved on local numbering; what improve_blocks() needs to write them back.
 struct BlockResult {
     std::vector<std::int32_t> global;     ///< global index of each original local vertex
     std::vector<std::int32_t> renumbered; ///< Improver::run's map, local -> output index or -1
