@@ -36,6 +36,17 @@ Summary summarise(const FacetCache& cache)
     return s;
 }
 
+/// The 7^3 grid points and 150 random E points; returns the next free id.
+std::uint32_t grid_and_edge_points(Delaunay& dt, std::mt19937& rng, std::uniform_real_distribution<double>& u)
+{
+    std::uint32_t id = 0;
+    for (int z = 0; z <= 6; ++z)
+        for (int y = 0; y <= 6; ++y)
+            for (int x = 0; x <= 6; ++x) dt.insert(Point(x, y, z))->info() = VertexInfo{id++, PointKind::Grid};
+    for (int i = 0; i < 150; ++i) dt.insert(Point(u(rng), u(rng), u(rng)))->info() = VertexInfo{id++, PointKind::Edge};
+    return id;
+}
+
 } // namespace
 
 TEST_CASE("facet cache: incremental records equal a fresh scan after insertions", "[mesher][facet_cache]")
@@ -47,12 +58,7 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(0.5, 5.5);
         Delaunay dt;
-        std::uint32_t id = 0;
-        for (int z = 0; z <= 6; ++z)
-            for (int y = 0; y <= 6; ++y)
-                for (int x = 0; x <= 6; ++x) dt.insert(Point(x, y, z))->info() = VertexInfo{id++, PointKind::Grid};
-        for (int i = 0; i < 150; ++i)
-            dt.insert(Point(u(rng), u(rng), u(rng)))->info() = VertexInfo{id++, PointKind::Edge};
+        std::uint32_t id = grid_and_edge_points(dt, rng, u);
         FacetCache cache;
         cache.update(dt, field, 1000);
         std::size_t active = 0;
@@ -84,12 +90,7 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after removals", 
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(0.5, 5.5);
         Delaunay dt;
-        std::uint32_t id = 0;
-        for (int z = 0; z <= 6; ++z)
-            for (int y = 0; y <= 6; ++y)
-                for (int x = 0; x <= 6; ++x) dt.insert(Point(x, y, z))->info() = VertexInfo{id++, PointKind::Grid};
-        for (int i = 0; i < 150; ++i)
-            dt.insert(Point(u(rng), u(rng), u(rng)))->info() = VertexInfo{id++, PointKind::Edge};
+        std::uint32_t id = grid_and_edge_points(dt, rng, u);
         FacetCache cache;
         cache.update(dt, field, 1000);
         std::size_t removed = 0;
