@@ -3,6 +3,7 @@
 #include "octree/cell_function.h"
 
 #include "geometry/closest_on_triangle.h"
+#include "geometry/triangle_corner_reach.h"
 
 #include "octree/cell_interpolant.h"
 #include "octree/segment_walk.h"
@@ -18,9 +19,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace isodel::mesher {
 namespace {
@@ -78,22 +81,26 @@ bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec
     return true;
 }
 
-/// M -> Sigma on one triangle, as a bound: d(x, Sigma) <= d(s, Sigma) + |x - s|, and every point of
-/// a triangle is within L / sqrt(3) of one of its corners (L: its longest edge). A sub-triangle
-/// passes when the largest bound at its corners plus L / sqrt(3) is at most `pass`; otherwise it
-/// is split in four at its edge midpoints, down to edges of `leaf`, where each corner must be
-/// within `limit` of Sigma. That is the rule of a barycentric sample grid of spacing `leaf`
+/// M -> Sigma on one triangle, as a bound: d(x, Sigma) <= d(s, Sigma) + |x - s|, and every point
+/// of a triangle is within its corner reach r of a corner (geometry::triangle_corner_reach: the
+/// circumradius, or half the longest edge L when not acute; r <= L / sqrt(3)). A sub-triangle
+/// passes when the largest bound at its corners plus r is at most `pass`; otherwise it is split
+/// in four at its edge midpoints, down to edges of `leaf`, where each corner must be within
+/// `limit` of Sigma. That is the rule of a barycentric sample grid of spacing `leaf`
 /// (pass = limit + leaf / sqrt(3) bounds the same distance) without projecting every grid
 /// sample: a triangle lying on Sigma within a few hundredths of eps passes after a dozen Newton
 /// projections instead of ~200. Splitting stops after kMaxDepth halvings: a sub-triangle still
 /// longer than `leaf` there must pass the covering bound itself, so every pass is certified by
 /// pass <= eps whatever the triangle's size.
+/// A sample is projected once per triangle: the midpoint of an edge shared by two sub-triangles
+/// is reached from both, so projections are remembered by the sample's position on the
+/// triangle's finest sample grid (kMaxDepth halvings).
 class TriangleToSurface {
 public:
     TriangleToSurface(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,
                       const openvdb::math::Mat3d& to_index, double step_cap, double limit, double leaf, double reach)
         : reader_(reader), to_world_(to_world), to_index_(to_index), step_cap_(step_cap), limit_(limit), leaf_(leaf),
-          pass_(limit + leaf / std::sqrt(3.0)), reach_(reach)
+          pass_(limit + leaf / std::sqrt(3.0)), reach_(reach), memo_(std::size_t(kGrid + 1) * (kGrid + 1))
     {
     }
 
@@ -106,7 +113,11 @@ public:
         p_ = p;
         normal_ = (b - a).cross(c - a);
         at_ = &at;
-        Corner A{a, off[0], true}, B{b, off[1], true}, C{c, off[2], true};
+        if (++stamp_ == 0) { // wrapped: forget every stamp
+            for (auto& m : memo_) m.stamp = 0;
+            stamp_ = 1;
+        }
+        Corner A{a, off[0], true, {}, kGrid, 0}, B{b, off[1], true, {}, 0, kGrid}, C{c, off[2], true, {}, 0, 0};
         return passes(A, B, C, 0);
     }
 
@@ -116,16 +127,33 @@ private:
         double d;             ///< d(s, Sigma) <= d
         bool exact = false;   ///< d already includes the Newton projection
         std::optional<Vec3d> q; ///< that projection
+        int u = 0, v = 0;       ///< barycentric weights of a and b on the finest grid (kGrid)
     };
 
-    void tighten(Corner& x) const
+    /// The projection of one sample of the current triangle (check()'s stamp).
+    struct Projected {
+        std::uint32_t stamp = 0;
+        Vec3d s;                ///< the sample
+        std::optional<Vec3d> q; ///< its Newton projection, when it converged
+    };
+
+    void tighten(Corner& x)
     {
         if (x.exact) return;
         x.exact = true;
-        Vec3d q;
-        if (project(reader_, to_world_, to_index_, step_cap_, x.s, q)) {
-            x.q = q;
-            x.d = std::min(x.d, (q - x.s).length());
+        Projected& m = memo_[std::size_t(x.u) * (kGrid + 1) + std::size_t(x.v)];
+        // The same grid position gives the same sample (midpoints are symmetric in their ends);
+        // comparing s keeps that an optimisation, not an assumption.
+        if (m.stamp != stamp_ || m.s != x.s) {
+            m.stamp = stamp_;
+            m.s = x.s;
+            Vec3d q;
+            m.q.reset();
+            if (project(reader_, to_world_, to_index_, step_cap_, x.s, q)) m.q = q;
+        }
+        if (m.q) {
+            x.q = m.q;
+            x.d = std::min(x.d, (*m.q - x.s).length());
         }
     }
 
@@ -139,7 +167,7 @@ private:
 
     Corner midpoint(const Corner& x, const Corner& y) const
     {
-        Corner m{0.5 * (x.s + y.s), 0.0};
+        Corner m{0.5 * (x.s + y.s), 0.0, false, {}, (x.u + y.u) / 2, (x.v + y.v) / 2};
         const double h = 0.5 * (x.s - y.s).length();
         m.d = std::min({x.d + h, y.d + h, (m.s - p_).length()});
         return m;
@@ -148,7 +176,8 @@ private:
     bool passes(Corner& A, Corner& B, Corner& C, int depth)
     {
         const double L = std::max({(B.s - A.s).length(), (C.s - B.s).length(), (A.s - C.s).length()});
-        const auto covered = [&] { return std::max({A.d, B.d, C.d}) + L / std::sqrt(3.0) <= pass_; };
+        const double reach = geometry::triangle_corner_reach(A.s, B.s, C.s);
+        const auto covered = [&] { return std::max({A.d, B.d, C.d}) + reach <= pass_; };
         if (covered()) return true;
         if (L <= leaf_) {
             for (Corner* x : {&A, &B, &C}) {
@@ -182,11 +211,14 @@ private:
     }
 
     static constexpr int kMaxDepth = 5; // 32 sub-edges per edge (the sample grid had at most 24)
+    static constexpr int kGrid = 1 << kMaxDepth;
     const octree::SampleField::Reader& reader_;
     const openvdb::math::Mat3d &to_world_, &to_index_;
     double step_cap_, limit_, leaf_, pass_, reach_;
     Vec3d p_, normal_;
     std::optional<Vec3d>* at_ = nullptr;
+    std::vector<Projected> memo_; ///< by (u, v) of the finest grid
+    std::uint32_t stamp_ = 0;
 };
 
 const FacetKey& key_of(const FacetKey& k) { return k; }
@@ -360,9 +392,59 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     for (std::size_t ci = 0; ci < crossed_cells_.size(); ++ci)
         if (recheck[ci]) todo.push_back(ci);
     if (todo.empty()) return {};
-    Tree tree(tris.cbegin(), tris.cend());
-    tree.accelerate_distance_queries();
     const double limit = 0.7 * eps_;
+    // The tree holds only the triangles that can be within `limit` of a sample of a cell to
+    // check (the samples lie in their cells): after the first call a few hundred cells of 10^5
+    // are checked, and building a tree of all of M (sequential in CGAL) cost more than the
+    // queries. A sample farther than `limit` from these is farther from all of M too.
+    std::vector<std::size_t> near(tris.size());
+    std::size_t n_near = 0;
+    if (4 * todo.size() >= crossed_cells_.size()) {
+        for (std::size_t i = 0; i < tris.size(); ++i) near[i] = i;
+        n_near = tris.size();
+    } else {
+        std::vector<openvdb::Coord> cells(todo.size());
+        for (std::size_t ti = 0; ti < todo.size(); ++ti) cells[ti] = crossed_cells_[todo[ti]];
+        std::sort(cells.begin(), cells.end());
+        // World distance r is at most r |world_to_index|_F index units along any axis.
+        double frob = 0;
+        for (int r = 0; r < 3; ++r)
+            for (int k = 0; k < 3; ++k) frob += world_to_index_(r, k) * world_to_index_(r, k);
+        const double margin = limit * std::sqrt(frob) * (1 + 1e-9);
+        std::vector<char> keep(tris.size(), 0);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris.size(), 4096), [&](const auto& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+                for (int k = 0; k < 3; ++k) {
+                    const Vec3d x = field_.world_to_index(Vec3d(tris[i][k].x(), tris[i][k].y(), tris[i][k].z()));
+                    lo = openvdb::math::minComponent(lo, x);
+                    hi = openvdb::math::maxComponent(hi, x);
+                }
+                // Cells [c, c + 1] meeting the box [lo - margin, hi + margin].
+                const openvdb::Coord a(int(std::ceil(lo[0] - margin)) - 1, int(std::ceil(lo[1] - margin)) - 1,
+                                       int(std::ceil(lo[2] - margin)) - 1);
+                const openvdb::Coord b(int(std::floor(hi[0] + margin)), int(std::floor(hi[1] + margin)),
+                                       int(std::floor(hi[2] + margin)));
+                for (int x = a[0]; x <= b[0] && !keep[i]; ++x)
+                    for (int y = a[1]; y <= b[1] && !keep[i]; ++y)
+                        for (int z = a[2]; z <= b[2] && !keep[i]; ++z)
+                            if (std::binary_search(cells.begin(), cells.end(), openvdb::Coord(x, y, z))) keep[i] = 1;
+            }
+        });
+        for (std::size_t i = 0; i < tris.size(); ++i)
+            if (keep[i]) near[n_near++] = i;
+    }
+    near.resize(n_near);
+    std::vector<KD::Triangle_3> near_tris(near.size());
+    for (std::size_t k = 0; k < near.size(); ++k) near_tris[k] = tris[near[k]];
+    // No triangle near the cells to check: every sample is farther than `limit` from M and
+    // fails; any one triangle keeps the tree non-empty (its distances exceed `limit` too).
+    if (near_tris.empty()) {
+        near_tris.push_back(tris.front());
+        near.push_back(0);
+    }
+    Tree tree(near_tris.cbegin(), near_tris.cend());
+    tree.accelerate_distance_queries();
     // Lines every eps/2 (world) on each face; R lines per unit of index.
     const int R = std::clamp(int(std::ceil(2.0 * field_.min_voxel_edge() / eps_)), 2, 64);
     const octree::FaceSlabs& slabs = field_.face_slabs();
@@ -380,7 +462,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
             Vec3d worst_at;
             bool any = false;
             std::vector<FacetKey> witness;
-            auto last = tris.cend();
+            auto last = near_tris.cend();
             // Faces x = 0, 1; y = 0, 1; z = 0, 1 of the cell; on each, lines along the two other axes.
             for (int axis = 0; axis < 3; ++axis)
                 for (int side = 0; side < 2; ++side)
@@ -406,20 +488,20 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
                             // d(q, M) <= d(q, T) for T in M: the triangle nearest to the previous
                             // sample (eps/2 away along the crease) usually passes q too, without a
                             // tree query; the tree is asked only otherwise.
-                            if (last != tris.cend()) {
+                            if (last != near_tris.cend()) {
                                 const KD::Triangle_3& t = *last;
                                 const Vec3d cl = geometry::closest_on_triangle(
                                     w, Vec3d(t[0].x(), t[0].y(), t[0].z()), Vec3d(t[1].x(), t[1].y(), t[1].z()),
                                     Vec3d(t[2].x(), t[2].y(), t[2].z()));
                                 if ((cl - w).length() <= limit) {
-                                    witness.push_back(restricted[std::size_t(last - tris.cbegin())]->key);
+                                    witness.push_back(restricted[near[std::size_t(last - near_tris.cbegin())]]->key);
                                     continue;
                                 }
                             }
                             const auto cp = tree.closest_point_and_primitive(q);
                             const double d = std::sqrt(CGAL::squared_distance(q, cp.first));
                             last = cp.second;
-                            witness.push_back(restricted[std::size_t(cp.second - tris.cbegin())]->key);
+                            witness.push_back(restricted[near[std::size_t(cp.second - near_tris.cbegin())]]->key);
                             if (d > worst) {
                                 worst = d;
                                 worst_at = w;
