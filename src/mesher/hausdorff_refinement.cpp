@@ -30,25 +30,31 @@ namespace {
 
 using Vec3d = openvdb::Vec3d;
 
+/// The last cell Newton read, with its F': Newton's steps are short and the samples of one
+/// triangle lie in a cell or two, so most projections start in the cell the previous one read.
+struct LastCell {
+    openvdb::Coord cell{std::numeric_limits<int>::min()};
+    octree::CellFunction f;
+};
+
 /// Newton projection of a world point onto Sigma along the world gradient of phi. Returns false
 /// when it does not converge (flat phi): the caller then has no bound from it.
-bool project(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,
-             const openvdb::math::Mat3d& to_index, double step_cap, const Vec3d& w0, Vec3d& out)
+bool project(const octree::SampleField::Reader& reader, LastCell& last, const openvdb::math::Mat3d& to_index,
+             double step_cap, const Vec3d& w0, Vec3d& out)
 {
     const auto& field = reader.field();
     Vec3d x = field.world_to_index(w0);
-    // Newton's steps are short: most stay in the cell they start in, whose corners are kept.
-    openvdb::Coord cell(std::numeric_limits<int>::min());
-    octree::CellFunction f;
+    const octree::CellFunction& f = last.f;
+    const openvdb::math::Mat3d to_index_t = to_index.transpose();
     for (int it = 0; it < 30; ++it) {
         const openvdb::Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
-        if (c != cell) {
-            f = octree::cell_function(reader, c);
-            cell = c;
+        if (c != last.cell) {
+            last.f = octree::cell_function(reader, c);
+            last.cell = c;
         }
         const Vec3d l = x - c.asVec3d();
         const double phi = f(l[0], l[1], l[2]);
-        const Vec3d gw = to_index.transpose() * f.gradient(l[0], l[1], l[2]); // world gradient
+        const Vec3d gw = to_index_t * f.gradient(l[0], l[1], l[2]); // world gradient
         const double g2 = gw.lengthSqr();
         if (!(g2 > 0)) return false;
         Vec3d dw = gw * (-phi / g2);
@@ -97,9 +103,9 @@ bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec
 /// triangle's finest sample grid (kMaxDepth halvings).
 class TriangleToSurface {
 public:
-    TriangleToSurface(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_world,
-                      const openvdb::math::Mat3d& to_index, double step_cap, double limit, double leaf, double reach)
-        : reader_(reader), to_world_(to_world), to_index_(to_index), step_cap_(step_cap), limit_(limit), leaf_(leaf),
+    TriangleToSurface(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_index, double step_cap,
+                      double limit, double leaf, double reach)
+        : reader_(reader), to_index_(to_index), step_cap_(step_cap), limit_(limit), leaf_(leaf),
           pass_(limit + leaf / std::sqrt(3.0)), reach_(reach), memo_(std::size_t(kGrid + 1) * (kGrid + 1))
     {
     }
@@ -117,7 +123,7 @@ public:
             for (auto& m : memo_) m.stamp = 0;
             stamp_ = 1;
         }
-        Corner A{a, off[0], true, {}, kGrid, 0}, B{b, off[1], true, {}, 0, kGrid}, C{c, off[2], true, {}, 0, 0};
+        Corner A{a, off[0], true, {}, kGrid, 0, a}, B{b, off[1], true, {}, 0, kGrid, b}, C{c, off[2], true, {}, 0, 0, c};
         return passes(A, B, C, 0);
     }
 
@@ -128,7 +134,13 @@ private:
         bool exact = false;   ///< d already includes the Newton projection
         std::optional<Vec3d> q; ///< that projection
         int u = 0, v = 0;       ///< barycentric weights of a and b on the finest grid (kGrid)
+        Vec3d start;            ///< where Newton starts (a midpoint: between its ends' projections)
     };
+
+    /// A corner's own point of Sigma when it has one: a midpoint's Newton start between the
+    /// projections of its ends lies within the chord's sagitta of Sigma, closer than the
+    /// midpoint itself, so Newton needs fewer steps; any point of Sigma bounds the distance.
+    static const Vec3d& on_sigma(const Corner& x) { return x.q ? *x.q : x.s; }
 
     /// The projection of one sample of the current triangle (check()'s stamp).
     struct Projected {
@@ -149,7 +161,7 @@ private:
             m.s = x.s;
             Vec3d q;
             m.q.reset();
-            if (project(reader_, to_world_, to_index_, step_cap_, x.s, q)) m.q = q;
+            if (project(reader_, last_cell_, to_index_, step_cap_, x.start, q)) m.q = q;
         }
         if (m.q) {
             x.q = m.q;
@@ -167,7 +179,7 @@ private:
 
     Corner midpoint(const Corner& x, const Corner& y) const
     {
-        Corner m{0.5 * (x.s + y.s), 0.0, false, {}, (x.u + y.u) / 2, (x.v + y.v) / 2};
+        Corner m{0.5 * (x.s + y.s), 0.0, false, {}, (x.u + y.u) / 2, (x.v + y.v) / 2, 0.5 * (on_sigma(x) + on_sigma(y))};
         const double h = 0.5 * (x.s - y.s).length();
         m.d = std::min({x.d + h, y.d + h, (m.s - p_).length()});
         return m;
@@ -213,12 +225,13 @@ private:
     static constexpr int kMaxDepth = 5; // 32 sub-edges per edge (the sample grid had at most 24)
     static constexpr int kGrid = 1 << kMaxDepth;
     const octree::SampleField::Reader& reader_;
-    const openvdb::math::Mat3d &to_world_, &to_index_;
+    const openvdb::math::Mat3d& to_index_;
     double step_cap_, limit_, leaf_, pass_, reach_;
     Vec3d p_, normal_;
     std::optional<Vec3d>* at_ = nullptr;
     std::vector<Projected> memo_; ///< by (u, v) of the finest grid
     std::uint32_t stamp_ = 0;
+    LastCell last_cell_;
 };
 
 const FacetKey& key_of(const FacetKey& k) { return k; }
@@ -303,7 +316,7 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field_); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
         auto& reader = readers.local();
-        TriangleToSurface to_surface(reader, index_to_world_, world_to_index_, step_cap, limit, 0.25 * eps_, 2.0 * eps_);
+        TriangleToSurface to_surface(reader, world_to_index_, step_cap, limit, 0.25 * eps_, 2.0 * eps_);
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const auto* e = todo[i];
             const auto vs = facet_vertices(e->facet);
