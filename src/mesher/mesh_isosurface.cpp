@@ -269,15 +269,27 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                    << "): guarantees not certified";
                 throw GuaranteeViolated(os.str());
             }
-            cache.update(dt, field, max_cells_walk);
-            const double t_update = since(tr);
-            // Priority: voxel-bound holes, then Theorem 3 (grid cells), then the ViolationFinder's
-            // classes; the later checks run only when the earlier ones found nothing.
-            const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
-                                               [](const FacetCache::Entry& e) { return e.overflow; });
             ViolationReport rep;
-            if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
-            filter_candidates(rep.candidates, run.keep);
+            double t_update = 0;
+            // Theorem 3 (grid cells) first, before the facet table's first scan: these rounds
+            // insert most of N (80 k of the 85 k topology points of a 128^3 protein), and with
+            // the table in place each round recomputed the records of every facet they made:
+            // 4.9 M records, then 2.9 M in one scan after them. A grid cell's check reads no record,
+            // and its segment walks have their own bound, so voxel-bound holes can wait.
+            if (!cache.scanned()) {
+                rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
+                filter_candidates(rep.candidates, run.keep);
+            }
+            if (rep.candidates.empty()) {
+                cache.update(dt, field, max_cells_walk);
+                t_update = since(tr);
+                // Then: voxel-bound holes, Theorem 3 again, the ViolationFinder's classes; the
+                // later checks run only when the earlier ones found nothing.
+                const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
+                                                   [](const FacetCache::Entry& e) { return e.overflow; });
+                if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
+                filter_candidates(rep.candidates, run.keep);
+            }
             if (!rep.candidates.empty()) rep.kind = Violation::GridCell;
             else rep = violations.find(cache, eps, run.keep);
             if (std::getenv("ISODEL_TRACE"))

@@ -84,11 +84,11 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     dt.find_conflicts(p, loc, std::back_inserter(boundary), std::back_inserter(conflicts), std::back_inserter(internal));
     // The facets the insertion replaces: each one once (an internal facet is shared by two
     // conflict cells), and a boundary facet too, since its other cell is replaced.
-    // Only facets with an E/N vertex are ever recorded (update()): the others, most of them when
-    // G' is inserted far from Sigma, need no key and no lookup.
+    // Only facets with an E/N vertex are ever recorded (update()), and none before the first
+    // scan: the others, most of them when G' is inserted far from Sigma, need no key and no lookup.
     for (const auto* facets : {&boundary, &internal})
         for (const Facet& f : *facets)
-            if (!dt.is_infinite(f) && has_surface_vertex(f)) {
+            if (scanned_ && !dt.is_infinite(f) && has_surface_vertex(f)) {
                 const FacetKey k = facet_key(f);
                 if (map_.erase(k)) changed_.push_back(k);
             }

@@ -57,6 +57,9 @@ public:
         scanned_ = false;
     }
 
+    /// Whether update() has scanned the triangulation yet (before that the table is empty).
+    bool scanned() const { return scanned_; }
+
     /// Inserts \p p (located from \p hint) and returns its vertex, or a null handle when p is
     /// already a vertex.
     Vertex_handle insert(Delaunay& dt, const Point& p, VertexInfo info, Cell_handle hint = Cell_handle());
