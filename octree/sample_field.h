@@ -100,7 +100,27 @@ public:
         /// index = i + 2j + 4k (corner (i,j,k) at c + (i,j,k)).
         void cell_corners(const Coord& c, double out[8]) const
         {
-            for (int n = 0; n < 8; ++n) out[n] = phi(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1));
+            const Coord d = c.offsetBy(1);
+            const bool inside = f_->domain_.isInside(c) && f_->domain_.isInside(d) &&
+                                (f_->ring_reads_background_ || (f_->lattice_.isInside(c) && f_->lattice_.isInside(d)));
+            if (!inside) {
+                for (int n = 0; n < 8; ++n) out[n] = phi(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1));
+                return;
+            }
+            // Every corner is read from the grid (the hot path: mesh cells, segment walks,
+            // Newton steps). A cell off a leaf's last row, column and layer has its eight corners
+            // in one leaf: one probe instead of eight accessor reads (the same values).
+            using Leaf = openvdb::FloatGrid::TreeType::LeafNodeType;
+            constexpr int kLast = int(Leaf::DIM) - 1;
+            if ((c[0] & kLast) != kLast && (c[1] & kLast) != kLast && (c[2] & kLast) != kLast)
+                if (const Leaf* leaf = acc_.probeConstLeaf(c)) {
+                    const openvdb::Index o = Leaf::coordToOffset(c);
+                    for (int n = 0; n < 8; ++n)
+                        out[n] = f_->phi_of_value(leaf->getValue(o + ((n & 1) << (2 * Leaf::LOG2DIM)) +
+                                                                 (((n >> 1) & 1) << Leaf::LOG2DIM) + ((n >> 2) & 1)));
+                    return;
+                }
+            for (int n = 0; n < 8; ++n) out[n] = f_->phi_of_value(acc_.getValue(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1)));
         }
         const SampleField& field() const { return *f_; }
 
