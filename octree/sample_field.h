@@ -120,7 +120,8 @@ public:
                                                                  (((n >> 1) & 1) << Leaf::LOG2DIM) + ((n >> 2) & 1)));
                     return;
                 }
-            for (int n = 0; n < 8; ++n) out[n] = f_->phi_of_value(acc_.getValue(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1)));
+            for (int n = 0; n < 8; ++n)
+                out[n] = f_->phi_of_value(acc_.getValue(c.offsetBy(n & 1, (n >> 1) & 1, (n >> 2) & 1)));
         }
         const SampleField& field() const { return *f_; }
 

@@ -15,7 +15,8 @@ namespace isodel::geometry {
 ///   the corner regions' common boundary inside the triangle stays within half the longest
 ///   edge of a corner).
 /// Both are at most L / sqrt(3) (L: the longest edge), the equilateral case.
-inline double triangle_corner_reach(const openvdb::math::Vec3d& a, const openvdb::math::Vec3d& b, const openvdb::math::Vec3d& c)
+inline double triangle_corner_reach(const openvdb::math::Vec3d& a, const openvdb::math::Vec3d& b,
+                                    const openvdb::math::Vec3d& c)
 {
     double e[3] = {(b - c).lengthSqr(), (c - a).lengthSqr(), (a - b).lengthSqr()};
     std::sort(e, e + 3);

@@ -123,7 +123,8 @@ public:
             for (auto& m : memo_) m.stamp = 0;
             stamp_ = 1;
         }
-        Corner A{a, off[0], true, {}, kGrid, 0, a}, B{b, off[1], true, {}, 0, kGrid, b}, C{c, off[2], true, {}, 0, 0, c};
+        Corner A{a, off[0], true, {}, kGrid, 0, a}, B{b, off[1], true, {}, 0, kGrid, b},
+            C{c, off[2], true, {}, 0, 0, c};
         return passes(A, B, C, 0);
     }
 
@@ -179,7 +180,8 @@ private:
 
     Corner midpoint(const Corner& x, const Corner& y) const
     {
-        Corner m{0.5 * (x.s + y.s), 0.0, false, {}, (x.u + y.u) / 2, (x.v + y.v) / 2, 0.5 * (on_sigma(x) + on_sigma(y))};
+        Corner m{0.5 * (x.s + y.s), 0.0, false, {}, (x.u + y.u) / 2, (x.v + y.v) / 2,
+                 0.5 * (on_sigma(x) + on_sigma(y))};
         const double h = 0.5 * (x.s - y.s).length();
         m.d = std::min({x.d + h, y.d + h, (m.s - p_).length()});
         return m;

@@ -274,8 +274,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             // Theorem 3 (grid cells) first, before the facet table's first scan: these rounds
             // insert most of N (80 k of the 85 k topology points of a 128^3 protein), and with
             // the table in place each round recomputed the records of every facet they made:
-            // 4.9 M records, then 2.9 M in one scan after them. A grid cell's check reads no record,
-            // and its segment walks have their own bound, so voxel-bound holes can wait.
+            // 4.9 M records, then 2.9 M in one scan after them. A grid cell's check reads no
+            // record, and its segment walks have their own bound, so voxel-bound holes can wait.
             if (!cache.scanned()) {
                 rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
                 filter_candidates(rep.candidates, run.keep);
