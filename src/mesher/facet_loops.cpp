@@ -5,6 +5,8 @@
 #include "octree/box_sign.h"
 #include "octree/segment_walk.h"
 
+#include <boost/container/small_vector.hpp>
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -22,6 +24,10 @@ namespace isodel::mesher {
 namespace {
 
 using octree::Vec3d;
+// Per-facet scratch lists: a facet has a handful of Voronoi vertices and piece planes, and the
+// first scan of a 128^3 protein looks at 1.6 M facets; heap lists cost an allocation each.
+template <class T>
+using Small = boost::container::small_vector<T, 16>;
 
 struct EdgeJob {
     Delaunay::Edge edge;
@@ -35,11 +41,11 @@ struct EdgeJob {
 /// (Quantized property seed 1275: such an edge hid the neck through a face saddle at exactly v,
 /// and M lost a handle.)
 struct Polygon {
-    const std::vector<Vec3d>& P;
+    const Small<Vec3d>& P;
     Vec3d N;
     double noise_edge2;
 
-    Polygon(const std::vector<Vec3d>& points, const Vec3d& normal) : P(points), N(normal), noise_edge2(0)
+    Polygon(const Small<Vec3d>& points, const Vec3d& normal) : P(points), N(normal), noise_edge2(0)
     {
         for (std::size_t i = 0; i < P.size(); ++i)
             noise_edge2 = std::max(noise_edge2, (P[(i + 1) % P.size()] - P[i]).lengthSqr());
@@ -60,9 +66,9 @@ struct Polygon {
 
 /// The planes where F' (octree/face_slabs.h) changes its trilinear piece, on one axis, in
 /// [lo, hi]: the grid planes c, or with slabs of half-width h their boundaries c - h and c + h.
-std::vector<double> piece_planes(double lo, double hi, double h)
+Small<double> piece_planes(double lo, double hi, double h)
 {
-    std::vector<double> out;
+    Small<double> out;
     for (int c = int(std::floor(lo)) - 1; c <= int(std::ceil(hi)) + 1; ++c) {
         const double planes[2] = {c - h, c + h};
         for (int i = h == 0 ? 1 : 0; i < 2; ++i)
@@ -82,8 +88,9 @@ void grid_edge_points(const Polygon& poly, const Vec3d& lo, const Vec3d& hi, dou
     for (int d = 0; d < 3; ++d) {
         const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
         if (std::abs(N[d]) < 1e-9 * N.length()) continue; // plane parallel to these edges
-        for (const double u : piece_planes(lo[e1], hi[e1], h))
-            for (const double v : piece_planes(lo[e2], hi[e2], h)) {
+        const Small<double> us = piece_planes(lo[e1], hi[e1], h), vs = piece_planes(lo[e2], hi[e2], h);
+        for (const double u : us)
+            for (const double v : vs) {
                 Vec3d q;
                 q[e1] = u;
                 q[e2] = v;
@@ -132,7 +139,7 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon&
                 t1 = std::min(t1, std::max(ta, tb));
             }
             if (!(t0 < t1)) continue;
-            std::vector<double> ts{t0, t1};
+            Small<double> ts{t0, t1};
             for (int a : {e1, e2}) {
                 if (D[a] == 0) continue;
                 const double xa = P0[a] + t0 * D[a], xb = P0[a] + t1 * D[a];
@@ -168,7 +175,7 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
     const Cell_handle c0 = job.edge.first;
     Vertex_handle va = c0->vertex(job.edge.second), vb = c0->vertex(job.edge.third);
     if (va->info().id > vb->info().id) std::swap(va, vb);
-    std::vector<Cell_handle> ring;
+    Small<Cell_handle> ring;
     auto cc = dt.incident_cells(Delaunay::Edge(c0, c0->index(va), c0->index(vb))), done = cc;
     do {
         if (dt.is_infinite(cc)) return std::nullopt; // unbounded: the voxel-bound repair's business
@@ -184,14 +191,14 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
     for (std::size_t i = 1; i < ring.size(); ++i)
         if (key(ring[i]) < key(ring[first])) first = i;
     std::rotate(ring.begin(), ring.begin() + std::ptrdiff_t(first), ring.end());
-    std::vector<Vec3d> P;
+    Small<Vec3d> P;
     for (const auto& c : ring) {
         const Point w = robust_circumcenter(c);
         P.push_back(field.world_to_index({w.x(), w.y(), w.z()}));
     }
 
     // The boundary's signs: one sign, or an arc (mixed) that the edge-count test already checks.
-    std::vector<char> P_inside(P.size());
+    Small<char> P_inside(P.size());
     bool mixed = false;
     for (std::size_t i = 0; i < P.size(); ++i) {
         P_inside[i] = octree::phi_at(reader, P[i]) >= 0;
