@@ -183,17 +183,27 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     initial.shrink_to_fit();
     st.seconds["delaunay"] = since(t0);
 
-    // Theorem 2, measured: cells met by the Voronoi cells of E points.
-    auto measure = [&](Vertex_handle v, int& max_cells, int bound, std::vector<Vertex_handle>& over) {
-        const int n = voronoi_cell_count(dt, v, field, leaves.get());
+    // Theorem 2, measured: cells met by the Voronoi cells of E points (and of N points, which
+    // get the N bound), in parallel; the verdicts in vertex order.
+    auto record = [&](Vertex_handle v, int n, int& max_cells, int bound, std::vector<Vertex_handle>& over) {
         if (n < 0 || n > bound) over.push_back(v);
         if (n > max_cells) max_cells = n;
     };
     std::vector<Vertex_handle> over_bound;
-    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-        if (v->info().kind == PointKind::Edge) measure(v, st.max_cells_e, st.bound_e, over_bound);
-        else if (v->info().kind == PointKind::Topology || v->info().kind == PointKind::Snapped)
-            measure(v, st.max_cells_n, st.bound_n, over_bound);
+    const auto t_measure = Clock::now();
+    {
+        std::vector<Vertex_handle> measured;
+        for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+            if (v->info().kind == PointKind::Edge || v->info().kind == PointKind::Topology ||
+                v->info().kind == PointKind::Snapped)
+                measured.push_back(v);
+        const std::vector<int> counts = voronoi_cell_counts(dt, measured, field, leaves.get());
+        for (std::size_t i = 0; i < measured.size(); ++i)
+            if (measured[i]->info().kind == PointKind::Edge)
+                record(measured[i], counts[i], st.max_cells_e, st.bound_e, over_bound);
+            else record(measured[i], counts[i], st.max_cells_n, st.bound_n, over_bound);
+    }
+    st.seconds["voxel_bound"] = since(t_measure);
     // Grid points whose Voronoi cell may meet Sigma (Theorem 3, checked): all of G at first.
     std::vector<Vertex_handle> grid_pending;
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
@@ -357,14 +367,16 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             const auto ti = Clock::now();
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
             const double t_insert = since(ti);
-            for (const auto& v : ins.inserted) {
+            std::vector<int> counts = voronoi_cell_counts(dt, ins.inserted, field, leaves.get());
+            for (std::size_t i = 0; i < ins.inserted.size(); ++i) {
+                const Vertex_handle v = ins.inserted[i];
                 loops.touched(v);
                 disk_pending.push_back(v);
                 if (rep.kind == Violation::FacetAngle) ++st.n_facet_angle;
                 if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff || rep.kind == Violation::FacetAngle)
                     ++st.n_geometry;
                 else ++st.n_topology;
-                measure(v, st.max_cells_n, st.bound_n, over_bound);
+                record(v, counts[i], st.max_cells_n, st.bound_n, over_bound);
             }
             // CBP_VE cascades are local: splitting a Voronoi edge makes new Voronoi edges next
             // to the new point, which may cross Sigma twice again (near creases, one at a time
@@ -379,11 +391,13 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 if (more.empty()) break;
                 const InsertionResult next = insert_candidates(dt, cache, more, next_id, hash_cell);
                 if (next.inserted.empty()) break;
-                for (const auto& v : next.inserted) {
+                counts = voronoi_cell_counts(dt, next.inserted, field, leaves.get());
+                for (std::size_t i = 0; i < next.inserted.size(); ++i) {
+                    const Vertex_handle v = next.inserted[i];
                     loops.touched(v);
                     disk_pending.push_back(v);
                     ++st.n_topology;
-                    measure(v, st.max_cells_n, st.bound_n, over_bound);
+                    record(v, counts[i], st.max_cells_n, st.bound_n, over_bound);
                 }
                 cascade += next.inserted.size();
                 scope.check();
@@ -434,6 +448,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         return result;
     }
 
+    const auto t_extract = Clock::now();
     result.surface = extract_surface(dt, cache);
     if (options.keep_points) {
         std::vector<std::pair<std::uint32_t, Point>> all;
@@ -446,6 +461,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     st.vertices = result.surface.vertices.size();
     st.triangles = result.surface.triangles.size();
     st.components = surface_topology(result.surface);
+    st.seconds["extract"] = since(t_extract);
     if (options.tets != TetRegion::None) {
         // DELVOLMESH (Section 4.1): fill the region(s) with G', keeping M (src/mesher/volume_mesh.h).
         t0 = Clock::now();

@@ -2,17 +2,19 @@
 
 #include "mesher/adaptive_points.h"
 #include "mesher/circumcenter.h"
+#include "mesher/vertex_star.h"
 
 #include <cmath>
 #include <vector>
 
 namespace isodel::mesher {
 
-bool voronoi_cell_box(const Delaunay& dt, Vertex_handle v, const octree::SampleField& field,
-                      openvdb::CoordBBox& cells)
+namespace {
+
+/// The box of the Voronoi vertices of \p incident (v's star), false if one is infinite.
+bool star_box(const Delaunay& dt, Vertex_handle v, const std::vector<Cell_handle>& incident,
+              const octree::SampleField& field, openvdb::CoordBBox& cells)
 {
-    std::vector<Cell_handle> incident;
-    dt.incident_cells(v, std::back_inserter(incident));
     openvdb::Vec3d lo(INFINITY), hi(-INFINITY);
     auto add = [&](const Point& p) {
         const auto q = field.world_to_index({p.x(), p.y(), p.z()});
@@ -39,14 +41,47 @@ bool voronoi_cell_box(const Delaunay& dt, Vertex_handle v, const octree::SampleF
     return true;
 }
 
+int count_in_box(const openvdb::CoordBBox& box, const octree::AdaptiveGrid::Reader* adaptive)
+{
+    if (adaptive) return leaves_in_box(*adaptive, box);
+    const double count = double(box.dim().x()) * box.dim().y() * box.dim().z();
+    return count > 1e6 ? 1000000 : int(count);
+}
+
+} // namespace
+
+bool voronoi_cell_box(const Delaunay& dt, Vertex_handle v, const octree::SampleField& field,
+                      openvdb::CoordBBox& cells)
+{
+    std::vector<Cell_handle> incident;
+    dt.incident_cells(v, std::back_inserter(incident));
+    return star_box(dt, v, incident, field, cells);
+}
+
 int voronoi_cell_count(const Delaunay& dt, Vertex_handle v, const octree::SampleField& field,
                        const octree::AdaptiveGrid::Reader* adaptive)
 {
     openvdb::CoordBBox box;
     if (!voronoi_cell_box(dt, v, field, box)) return -1;
-    if (adaptive) return leaves_in_box(*adaptive, box);
-    const double count = double(box.dim().x()) * box.dim().y() * box.dim().z();
-    return count > 1e6 ? 1000000 : int(count);
+    return count_in_box(box, adaptive);
+}
+
+std::vector<int> voronoi_cell_counts(const Delaunay& dt, const std::vector<Vertex_handle>& vertices,
+                                     const octree::SampleField& field, const octree::AdaptiveGrid::Reader* adaptive)
+{
+    // Measured after the first Delaunay of a 128^3 protein (77 k E points): 1 s serially.
+    std::vector<int> out(vertices.size());
+    if (dt.dimension() < 3) { // gather_star walks 3-cells
+        for (std::size_t i = 0; i < vertices.size(); ++i) out[i] = voronoi_cell_count(dt, vertices[i], field, adaptive);
+        return out;
+    }
+    std::vector<openvdb::CoordBBox> boxes(vertices.size());
+    std::vector<char> bounded(vertices.size(), 0);
+    for_each_star(vertices, 0, vertices.size(), [&](std::size_t i, const std::vector<Cell_handle>& cells) {
+        bounded[i] = star_box(dt, vertices[i], cells, field, boxes[i]);
+    });
+    for (std::size_t i = 0; i < vertices.size(); ++i) out[i] = bounded[i] ? count_in_box(boxes[i], adaptive) : -1;
+    return out;
 }
 
 } // namespace isodel::mesher

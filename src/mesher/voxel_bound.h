@@ -7,6 +7,8 @@
 #include "octree/adaptive_grid.h"
 #include "octree/sample_field.h"
 
+#include <vector>
+
 namespace isodel::mesher {
 
 /// The unit cells overlapped by the bounding box of Vor(v); false when Vor(v) is unbounded.
@@ -17,5 +19,12 @@ bool voronoi_cell_box(const Delaunay& dt, Vertex_handle v, const octree::SampleF
 /// -1 when unbounded.
 int voronoi_cell_count(const Delaunay& dt, Vertex_handle v, const octree::SampleField& field,
                        const octree::AdaptiveGrid::Reader* adaptive = nullptr);
+
+/// voronoi_cell_count of every vertex of \p vertices, in their order: the boxes in parallel
+/// (stars by gather_star, so threads share no visit marks), the leaf counts serially (one
+/// adaptive reader). \p dt must not change meanwhile.
+std::vector<int> voronoi_cell_counts(const Delaunay& dt, const std::vector<Vertex_handle>& vertices,
+                                     const octree::SampleField& field,
+                                     const octree::AdaptiveGrid::Reader* adaptive = nullptr);
 
 } // namespace isodel::mesher
