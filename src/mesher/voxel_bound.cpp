@@ -69,7 +69,7 @@ int voronoi_cell_count(const Delaunay& dt, Vertex_handle v, const octree::Sample
 std::vector<int> voronoi_cell_counts(const Delaunay& dt, const std::vector<Vertex_handle>& vertices,
                                      const octree::SampleField& field, const octree::AdaptiveGrid::Reader* adaptive)
 {
-    // Measured after the first Delaunay of a 128^3 protein (77 k E points): 1 s serially.
+    // After the first Delaunay of a 128^3 protein (77 k E points): 0.46 s on one thread.
     std::vector<int> out(vertices.size());
     if (dt.dimension() < 3) { // gather_star walks 3-cells
         for (std::size_t i = 0; i < vertices.size(); ++i) out[i] = voronoi_cell_count(dt, vertices[i], field, adaptive);
