@@ -64,12 +64,11 @@ std::vector<ComponentTopology> surface_topology(const SurfaceMesh& mesh)
     // and a mark per vertex.
     std::vector<ComponentTopology> by_root(nv);
     std::vector<int> vertices(nv, 0), edges(nv, 0);
-    std::vector<char> seen(nv, 0), has(nv, 0);
+    std::vector<char> seen(nv, 0);
     std::vector<std::pair<std::int32_t, std::int32_t>> all_edges;
     all_edges.reserve(3 * mesh.triangles.size());
     for (const auto& t : mesh.triangles) {
         const std::size_t r = find(std::size_t(t[0]));
-        has[r] = 1;
         by_root[r].triangles++;
         for (int j = 0; j < 3; ++j) {
             if (!seen[std::size_t(t[j])]) {
@@ -84,7 +83,7 @@ std::vector<ComponentTopology> surface_topology(const SurfaceMesh& mesh)
     for (const auto& e : all_edges) ++edges[find(std::size_t(e.first))];
     std::vector<ComponentTopology> out;
     for (std::size_t r = 0; r < nv; ++r) {
-        if (!has[r]) continue;
+        if (by_root[r].triangles == 0) continue; // not a root, or a vertex in no triangle
         ComponentTopology c = by_root[r];
         c.euler = vertices[r] - edges[r] + int(c.triangles);
         c.genus = (2 - c.euler) / 2;
