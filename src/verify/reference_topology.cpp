@@ -169,12 +169,52 @@ std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std:
     std::vector<std::int32_t> tri_vertex; // one vertex per triangle, to count F per component
     CellRefiner refiner(R, &planes, base);
     octree::SampleField::Reader reader(field.samples());
+    // An edge inside the cell (off its faces) belongs to this cell alone, so its id lives in a
+    // dense per-cell table (stamped by cell) instead of the global map, whose lookups miss the
+    // cache. The ids are handed out in the same order either way.
+    std::vector<std::int32_t> local_id;
+    std::vector<std::uint32_t> local_stamp;
+    std::uint32_t stamp = 0;
     for (const Coord& c : cells) {
-        refiner.run(reader, c, [&](const RefTriangle& t) {
+        ++stamp;
+        bool sized = false;
+        std::int64_t o[3] = {0, 0, 0};
+        int n[3] = {0, 0, 0};
+        refiner.run<false>(reader, c, [&](const RefTriangle& t) {
+            if (!sized) {
+                sized = true;
+                for (int a = 0; a < 3; ++a) {
+                    o[a] = refiner.origin(a);
+                    n[a] = refiner.planes(a);
+                }
+                const std::size_t need = 8 * std::size_t(n[0]) * std::size_t(n[1]) * std::size_t(n[2]);
+                if (local_id.size() < need) {
+                    local_id.resize(need);
+                    local_stamp.resize(need, 0);
+                }
+            }
             std::int32_t v[3];
             for (int q = 0; q < 3; ++q) {
-                v[q] = ids.get(t.key[q], std::int32_t(uf.p.size()));
-                if (v[q] == std::int32_t(uf.p.size())) uf.add();
+                const std::uint64_t key = t.key[q];
+                const unsigned dir = unsigned(key & 7u);
+                const int l[3] = {int(std::int64_t((key >> 43) & 0xFFFFF) - o[0]),
+                                  int(std::int64_t((key >> 23) & 0xFFFFF) - o[1]),
+                                  int(std::int64_t((key >> 3) & 0xFFFFF) - o[2])};
+                bool interior = true;
+                for (int a = 0; a < 3; ++a)
+                    interior = interior && ((dir >> a & 1u) || (l[a] > 0 && l[a] < n[a] - 1));
+                const std::int32_t next = std::int32_t(uf.p.size());
+                if (interior) {
+                    const std::size_t i = 8 * (std::size_t(l[0]) + std::size_t(n[0]) * (std::size_t(l[1]) + std::size_t(n[1]) * std::size_t(l[2]))) + dir;
+                    if (local_stamp[i] != stamp) {
+                        local_stamp[i] = stamp;
+                        local_id[i] = next;
+                    }
+                    v[q] = local_id[i];
+                } else {
+                    v[q] = ids.get(key, next);
+                }
+                if (v[q] == next) uf.add();
             }
             uf.unite(v[0], v[1]);
             uf.unite(v[0], v[2]);

@@ -100,4 +100,24 @@ void CellRefiner::sample(const octree::SampleField::Reader& reader, const Coord&
     }
 }
 
+void CellRefiner::scan_lines()
+{
+    const int nx = n_[0], ny = n_[1], nz = n_[2];
+    lines_.resize(std::size_t(ny) * std::size_t(nz));
+    for (int z = 0; z < nz; ++z)
+        for (int y = 0; y < ny; ++y) {
+            const double* v = &v_[std::size_t(nx) * std::size_t(y + ny * z)];
+            LineSigns& line = lines_[std::size_t(y + ny * z)];
+            line.first_change = nx - 1;
+            line.last_change = -1;
+            for (int x = 0; x + 1 < nx; ++x)
+                if ((v[x] >= 0.0) != (v[x + 1] >= 0.0)) {
+                    line.first_change = std::min(line.first_change, x);
+                    line.last_change = x;
+                }
+            line.first_in = v[0] >= 0.0;
+            line.last_in = v[nx - 1] >= 0.0;
+        }
+}
+
 } // namespace isodel::verify

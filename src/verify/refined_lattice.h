@@ -26,6 +26,7 @@
 
 #include <isodel/errors.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -67,9 +68,14 @@ public:
     /// \p planes, if not null, must outlive the refiner; \p base is crossed_cells()'s.
     explicit CellRefiner(int R, const SlabPlanes* planes = nullptr, const Coord& base = Coord(0));
     int refine() const { return R_; }
+    /// After run() or crossings(): the global sub-lattice index of the cell's first plane along
+    /// \p axis, and the cell's number of planes along it.
+    std::int64_t origin(int axis) const { return g_[std::size_t(axis)]; }
+    int planes(int axis) const { return n_[axis]; }
     /// Samples the cell with lowest corner \p cell (corner phi from \p reader), then calls
     /// emit(const RefTriangle&) for every triangle (edge keys relative to the constructor's base).
-    template <class Emit>
+    /// With \p kPositions false the triangles' pos are left unset (topology needs only keys).
+    template <bool kPositions = true, class Emit>
     void run(const octree::SampleField::Reader& reader, const Coord& cell, Emit&& emit);
     /// Sub-lattice crossing points only (no triangles), each edge once per cell; for sampling Sigma.
     template <class Emit>
@@ -77,6 +83,8 @@ public:
 
 private:
     void sample(const octree::SampleField::Reader& reader, const Coord& cell);
+    /// Fills lines_ from v_ (after sample()).
+    void scan_lines();
     double val(int x, int y, int z) const { return v_[std::size_t(x + n_[0] * (y + n_[1] * z))]; }
     Vec3d at(int x, int y, int z) const { return Vec3d(t_[0][std::size_t(x)], t_[1][std::size_t(y)], t_[2][std::size_t(z)]); }
     int R_;
@@ -87,11 +95,20 @@ private:
     std::array<std::int64_t, 3> g_{};                 // this cell's global sub-lattice offset
     int n_[3] = {0, 0, 0};                            // planes per axis (sub-cells + 1)
     std::vector<double> v_;
+    /// Signs along one x-line of the sub-lattice: the sign (phi >= 0) of its first and last
+    /// values and the first and last x with sign(v[x]) != sign(v[x + 1]) (n_[0] - 1 and -1 when
+    /// the line keeps one sign). F is linear along the line, so it changes sign at most once up
+    /// to rounding; the rule reads the computed values, so rounding cannot fool it.
+    struct LineSigns {
+        int first_change, last_change;
+        bool first_in, last_in;
+    };
+    std::vector<LineSigns> lines_; // index y + n_[1] * z
 };
 
 // ---- implementation (templates) ----
 
-template <class Emit>
+template <bool kPositions, class Emit>
 void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& cell, Emit&& emit)
 {
     sample(reader, cell);
@@ -102,11 +119,29 @@ void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& ce
     for (int a = 0; a < 3; ++a) // edge keys hold 20 bits per coordinate (crossings() needs none)
         if (g_[std::size_t(a)] < 0 || g_[std::size_t(a)] + n_[a] >= (std::int64_t(1) << 20))
             throw InvalidInput("verify: volume too large for the 20-bit sub-lattice edge keys at this refinement");
+    scan_lines();
     double cv[8];
     bool in[8];
+    const int nx = n_[0], ny = n_[1];
     for (int z = 0; z + 1 < n_[2]; ++z)
-        for (int y = 0; y + 1 < n_[1]; ++y)
-            for (int x = 0; x + 1 < n_[0]; ++x) {
+        for (int y = 0; y + 1 < n_[1]; ++y) {
+            // The row of sub-cubes between the 4 x-lines (y|y+1, z|z+1): a sub-cube left of every
+            // line's first sign change (right of every last one) is uniform when the 4 lines start
+            // (end) with one sign, so only [begin, end) can hold mixed sub-cubes. This skips no
+            // mixed sub-cube (it reads the same computed values), so the triangles and their order
+            // are those of the full scan.
+            const LineSigns* l[4] = {&lines_[std::size_t(y + ny * z)], &lines_[std::size_t(y + 1 + ny * z)],
+                                     &lines_[std::size_t(y + ny * (z + 1))], &lines_[std::size_t(y + 1 + ny * (z + 1))]};
+            int first = nx - 1, last = -1;
+            bool same_first = true, same_last = true;
+            for (const LineSigns* line : l) {
+                first = std::min(first, line->first_change);
+                last = std::max(last, line->last_change);
+                same_first = same_first && line->first_in == l[0]->first_in;
+                same_last = same_last && line->last_in == l[0]->last_in;
+            }
+            const int begin = same_first ? first : 0, end = same_last ? last + 1 : nx - 1;
+            for (int x = begin; x < end; ++x) {
                 int nin = 0;
                 for (int n = 0; n < 8; ++n) {
                     cv[n] = val(x + (n & 1), y + ((n >> 1) & 1), z + ((n >> 2) & 1));
@@ -119,6 +154,7 @@ void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& ce
                     if ((u & v) != u) std::swap(u, v);
                     key = edge_key(gx + x + (u & 1), gy + y + ((u >> 1) & 1), gz + z + ((u >> 2) & 1),
                                    unsigned(u ^ v));
+                    if (!kPositions) return;
                     const double a = cv[u], b = cv[v];
                     const double t = a / (a - b);
                     const Vec3d pu = at(x + (u & 1), y + ((u >> 1) & 1), z + ((u >> 2) & 1));
@@ -150,6 +186,7 @@ void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& ce
                     }
                 }
             }
+        }
 }
 
 template <class Emit>
