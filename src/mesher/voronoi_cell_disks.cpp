@@ -5,6 +5,7 @@
 #include "mesher/cell_surface_euler.h"
 #include "mesher/circumcenter.h"
 #include "mesher/vertex_star.h"
+#include "octree/box_cells.h"
 #include "octree/cell_interpolant.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -63,25 +64,14 @@ public:
         best_d2_ = 0;
         best_.reset();
         normals_.clear();
-        const Coord c0(int(std::floor(lo[0])), int(std::floor(lo[1])), int(std::floor(lo[2])));
-        const Coord c1(int(std::floor(hi[0])), int(std::floor(hi[1])), int(std::floor(hi[2])));
-        for (int z = c0.z(); z <= c1.z(); ++z)
-            for (int y = c0.y(); y <= c1.y(); ++y)
-                for (int x = c0.x(); x <= c1.x(); ++x) {
-                    const Coord c(x, y, z);
-                    const Vec3d o = c.asVec3d();
-                    Vec3d a, b;
-                    for (int k = 0; k < 3; ++k) {
-                        a[k] = std::max(lo[k] - o[k], 0.0);
-                        b[k] = std::min(hi[k] - o[k], 1.0);
-                    }
-                    if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) continue;
-                    // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
-                    const octree::CellFunction cf = octree::cell_function(reader_, c);
-                    octree::for_each_piece(cf.slabs(), a, b, [&](int ix, int iy, int iz, const Vec3d& pa, const Vec3d& pb) {
-                        if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2]) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
-                    });
-                }
+        octree::for_each_cell_part(lo, hi, [&](const Coord& c, const Vec3d& a, const Vec3d& b) {
+            if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) return;
+            // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
+            const octree::CellFunction cf = octree::cell_function(reader_, c);
+            octree::for_each_piece(cf.slabs(), a, b, [&](int ix, int iy, int iz, const Vec3d& pa, const Vec3d& pb) {
+                if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2]) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
+            });
+        });
     }
 
     bool settled() const { return settled_; }
