@@ -12,10 +12,9 @@
 
 namespace isodel::octree {
 
-/// Calls fn(cell, a, b) for every cell whose closed unit box meets [lo, hi]: the cells
-/// floor(lo) ... floor(hi), the ones phi_at reads for points of the box (it takes the cell
-/// floor(p)). [a, b] is the box clipped to the cell, relative to its lowest corner; it may be flat
-/// (a[k] == b[k]) where the box only touches the cell.
+/// Calls fn(cell, a, b) for the cells floor(lo) ... floor(hi), the ones phi_at reads for points
+/// of the box (it takes the cell floor(p)). [a, b] is the box clipped to the cell, relative to
+/// its lowest corner; it may be flat (a[k] == b[k]) where the box only touches the cell.
 template <class Fn>
 inline void for_each_cell_part(const openvdb::Vec3d& lo, const openvdb::Vec3d& hi, Fn&& fn)
 {

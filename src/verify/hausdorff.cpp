@@ -30,10 +30,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace isodel::verify {
@@ -145,13 +147,40 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
     std::atomic<std::size_t> fallbacks{0}, unresolved{0};
     double spacing = 0.0;
     std::mutex spacing_mutex;
+    // A cell's refined triangles in world coordinates, and which of their vertices lie on
+    // axis-aligned sub-lattice edges (exactly on Sigma, see below). Neighbouring samples search
+    // the same cells, so each thread keeps the last kCacheCells cells' triangles: the same values
+    // in the same order as refining again, so the distances are unchanged.
+    struct CellTriangles {
+        std::vector<std::array<Vec3d, 3>> tri;
+        std::vector<std::uint8_t> on_sigma; // bit v: vertex v is on an axis-aligned edge
+    };
+    constexpr std::size_t kCacheCells = 4096;
     struct Local2 {
         TrilinearField::Evaluator ev;
         CellRefiner refiner;
         Accum acc;
         double spacing = 0.0;
+        std::unordered_map<std::uint64_t, CellTriangles> cache;
     };
-    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), CellRefiner(kLocalR, nullptr, base), {}, 0.0}; });
+    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), CellRefiner(kLocalR, nullptr, base), {}, 0.0, {}}; });
+    auto cell_triangles = [&](Local2& L, const Coord& c) -> const CellTriangles& {
+        const std::uint64_t key = cell_key(c, base);
+        auto it = L.cache.find(key);
+        if (it != L.cache.end()) return it->second;
+        if (L.cache.size() >= kCacheCells) L.cache.clear();
+        CellTriangles& ct = L.cache[key];
+        L.refiner.run(L.ev.reader(), c, [&](const RefTriangle& t) {
+            std::uint8_t on = 0;
+            for (int v = 0; v < 3; ++v) {
+                const unsigned dir = unsigned(t.key[v] & 7u);
+                if (dir == 1 || dir == 2 || dir == 4) on |= std::uint8_t(1u << v);
+            }
+            ct.tri.push_back({field.to_world(t.pos[0]), field.to_world(t.pos[1]), field.to_world(t.pos[2])});
+            ct.on_sigma.push_back(on);
+        });
+        return ct;
+    };
 
     auto local_search = [&](Local2& L, const Vec3d& p, double r, double& best) {
         // Conservative index box of the world ball B(p, r): image of its world bounding box.
@@ -175,20 +204,19 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
                 for (int i = int(std::floor(lo[0])); i <= int(std::floor(hi[0])); ++i) {
                     const Coord c(i, j, k);
                     if (c[0] < base[0] || c[1] < base[1] || c[2] < base[2] || !crossed.count(cell_key(c, base))) continue;
-                    L.refiner.run(L.ev.reader(), c, [&](const RefTriangle& t) {
-                        const Vec3d q = geometry::closest_on_triangle(p, field.to_world(t.pos[0]), field.to_world(t.pos[1]),
-                                                            field.to_world(t.pos[2]));
-                        for (int v = 0; v < 3; ++v) {
-                            const unsigned dir = unsigned(t.key[v] & 7u);
-                            if (dir == 1 || dir == 2 || dir == 4) // axis-aligned: exactly on Sigma
-                                vertex_bound = std::min(vertex_bound, (field.to_world(t.pos[v]) - p).length());
-                        }
+                    const CellTriangles& ct = cell_triangles(L, c);
+                    for (std::size_t i = 0; i < ct.tri.size(); ++i) {
+                        const auto& w = ct.tri[i];
+                        const Vec3d q = geometry::closest_on_triangle(p, w[0], w[1], w[2]);
+                        for (int v = 0; v < 3; ++v)
+                            if (ct.on_sigma[i] >> v & 1u) // axis-aligned: exactly on Sigma
+                                vertex_bound = std::min(vertex_bound, (w[std::size_t(v)] - p).length());
                         const double d = (q - p).length();
                         if (d < bestd) {
                             bestd = d;
                             bestq = q;
                         }
-                    });
+                    }
                 }
         if (bestd == 1e300) return false;
         Vec3d y;

@@ -171,13 +171,16 @@ std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std:
     octree::SampleField::Reader reader(field.samples());
     // An edge inside the cell (off its faces) belongs to this cell alone, so its id lives in a
     // dense per-cell table (stamped by cell) instead of the global map, whose lookups miss the
-    // cache. The ids are handed out in the same order either way.
+    // cache. The ids are handed out in the same order either way. The table has 8 entries per
+    // sub-lattice point of a cell, so past kDenseMax (32 MiB of ids and stamps; R = 64 takes 17 MiB)
+    // every edge goes to the global map.
+    constexpr std::size_t kDenseMax = std::size_t(1) << 22;
     std::vector<std::int32_t> local_id;
     std::vector<std::uint32_t> local_stamp;
     std::uint32_t stamp = 0;
     for (const Coord& c : cells) {
         ++stamp;
-        bool sized = false;
+        bool sized = false, dense = false;
         std::int64_t o[3] = {0, 0, 0};
         int n[3] = {0, 0, 0};
         refiner.run<false>(reader, c, [&](const RefTriangle& t) {
@@ -188,7 +191,8 @@ std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std:
                     n[a] = refiner.planes(a);
                 }
                 const std::size_t need = 8 * std::size_t(n[0]) * std::size_t(n[1]) * std::size_t(n[2]);
-                if (local_id.size() < need) {
+                dense = need <= kDenseMax;
+                if (dense && local_id.size() < need) {
                     local_id.resize(need);
                     local_stamp.resize(need, 0);
                 }
@@ -200,7 +204,7 @@ std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std:
                 const int l[3] = {int(std::int64_t((key >> 43) & 0xFFFFF) - o[0]),
                                   int(std::int64_t((key >> 23) & 0xFFFFF) - o[1]),
                                   int(std::int64_t((key >> 3) & 0xFFFFF) - o[2])};
-                bool interior = true;
+                bool interior = dense;
                 for (int a = 0; a < 3; ++a)
                     interior = interior && ((dir >> a & 1u) || (l[a] > 0 && l[a] < n[a] - 1));
                 const std::int32_t next = std::int32_t(uf.p.size());

@@ -47,7 +47,7 @@ inline std::uint64_t edge_key(std::int64_t x, std::int64_t y, std::int64_t z, un
 }
 
 /// A marching-tetrahedra triangle: three sub-lattice edge keys and the linear-interpolated
-/// crossing points on them (index space).
+/// crossing points on them (index space; zero from CellRefiner::run<false>, which skips them).
 struct RefTriangle {
     std::uint64_t key[3];
     Vec3d pos[3];
@@ -154,7 +154,10 @@ void CellRefiner::run(const octree::SampleField::Reader& reader, const Coord& ce
                     if ((u & v) != u) std::swap(u, v);
                     key = edge_key(gx + x + (u & 1), gy + y + ((u >> 1) & 1), gz + z + ((u >> 2) & 1),
                                    unsigned(u ^ v));
-                    if (!kPositions) return;
+                    if (!kPositions) {
+                        pos = Vec3d(0.0);
+                        return;
+                    }
                     const double a = cv[u], b = cv[v];
                     const double t = a / (a - b);
                     const Vec3d pu = at(x + (u & 1), y + ((u >> 1) & 1), z + ((u >> 2) & 1));

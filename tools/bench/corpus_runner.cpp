@@ -1,7 +1,8 @@
 // corpus_runner: meshes every volume of ../shared/data/manifest.json (entries with expect_error
 // are skipped) at each requested eps, verifies each result with isodel::verify_surface, and prints
-// one table: dataset, dims, eps, vertices, triangles, mesh time, and the verdicts (topology,
-// Hausdorff, Delaunay; plus "M" = closed oriented manifold without self-intersections).
+// one table: dataset, dims, eps, vertices, triangles, mesh time, verify time, and the verdicts
+// (topology, Hausdorff, Delaunay; plus "M" = closed oriented manifold without self-intersections).
+// The last line sums both times (a benchmark of the verifier as much as of the mesher).
 //
 //   corpus_runner [--data DIR] [--eps-voxels 0.5,0.1] [--filter SUBSTRING] [--formats vdb,mrc,inr]
 //                 [--no-delaunay] [--threads N]
@@ -80,9 +81,10 @@ int main(int argc, char** argv)
     ss << in.rdbuf();
     const auto manifest = isodel::minijson::parse(ss.str());
 
-    std::printf("%-42s %-12s %5s %8s %9s %8s %-9s %-9s %-9s %-4s %s\n", "dataset", "dims", "eps", "vertices", "triangles",
-                "time_s", "topology", "hausdorff", "delaunay", "M", "notes");
+    std::printf("%-42s %-12s %5s %8s %9s %8s %8s %-9s %-9s %-9s %-4s %s\n", "dataset", "dims", "eps", "vertices",
+                "triangles", "time_s", "verify_s", "topology", "hausdorff", "delaunay", "M", "notes");
     int rows = 0, failed = 0;
+    double mesh_total = 0, verify_total = 0;
     for (const auto& e : manifest.arr) {
         if (e.has("expect_error") && e["expect_error"].type == isodel::minijson::Value::Bool && e["expect_error"].b) continue;
         if (e["category"].as_string() == "invalid") continue;
@@ -129,7 +131,11 @@ int main(int argc, char** argv)
             std::string notes;
             bool ok = false;
             try {
+                const auto v0 = std::chrono::steady_clock::now();
                 const isodel::VerifyReport r = isodel::verify_surface(*vol.grid, res.surface, vo);
+                const double vsecs = std::chrono::duration<double>(std::chrono::steady_clock::now() - v0).count();
+                mesh_total += secs;
+                verify_total += vsecs;
                 ok = r.passed();
                 const char* topo = r.topology_verdict == "undetermined" ? "undet." : verdict(true, r.topology_verdict == "pass");
                 char h[64];
@@ -138,8 +144,8 @@ int main(int argc, char** argv)
                 notes = "M genus";
                 for (const auto& c : r.mesh.components) notes += " " + std::to_string(c.genus);
                 if (r.mesh.components.size() > 8) notes = "M " + std::to_string(r.mesh.components.size()) + " comps";
-                std::printf("%-42s %-12s %5.2f %8zu %9zu %8.2f %-9s %-9s %-9s %-4s %s\n", file.c_str(), dims.c_str(), eps,
-                            res.surface.vertices.size(), res.surface.triangles.size(), secs, topo, h,
+                std::printf("%-42s %-12s %5.2f %8zu %9zu %8.2f %8.2f %-9s %-9s %-9s %-4s %s\n", file.c_str(), dims.c_str(),
+                            eps, res.surface.vertices.size(), res.surface.triangles.size(), secs, vsecs, topo, h,
                             verdict(r.delaunay.checked, r.delaunay.passed), r.mesh_ok() ? "ok" : "FAIL", notes.c_str());
             } catch (const std::exception& ex) {
                 std::printf("%-42s %-12s %5.2f verify error: %s\n", file.c_str(), dims.c_str(), eps, ex.what());
@@ -148,6 +154,6 @@ int main(int argc, char** argv)
             failed += !ok;
         }
     }
-    std::printf("%d rows, %d failed\n", rows, failed);
+    std::printf("%d rows, %d failed; mesh %.1f s, verify %.1f s in all\n", rows, failed, mesh_total, verify_total);
     return failed == 0 ? 0 : 1;
 }
