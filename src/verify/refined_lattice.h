@@ -74,7 +74,7 @@ public:
     int planes(int axis) const { return n_[axis]; }
     /// Samples the cell with lowest corner \p cell (corner phi from \p reader), then calls
     /// emit(const RefTriangle&) for every triangle (edge keys relative to the constructor's base).
-    /// With \p kPositions false the triangles' pos are left unset (topology needs only keys).
+    /// With \p kPositions false the triangles' pos are zero (topology needs only keys).
     template <bool kPositions = true, class Emit>
     void run(const octree::SampleField::Reader& reader, const Coord& cell, Emit&& emit);
     /// Sub-lattice crossing points only (no triangles), each edge once per cell; for sampling Sigma.
