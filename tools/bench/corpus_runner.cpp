@@ -130,11 +130,11 @@ int main(int argc, char** argv)
             vo.check_delaunay = delaunay;
             std::string notes;
             bool ok = false;
+            mesh_total += secs; // counted whether or not the verification below completes
             try {
                 const auto v0 = std::chrono::steady_clock::now();
                 const isodel::VerifyReport r = isodel::verify_surface(*vol.grid, res.surface, vo);
                 const double vsecs = std::chrono::duration<double>(std::chrono::steady_clock::now() - v0).count();
-                mesh_total += secs;
                 verify_total += vsecs;
                 ok = r.passed();
                 const char* topo = r.topology_verdict == "undetermined" ? "undet." : verdict(true, r.topology_verdict == "pass");
