@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -263,8 +264,13 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
 {
     // Triangles around each restricted edge, for the Sigma -> M check of p.
     std::vector<const FacetCache::Entry*> todo;
-    for (const auto* e : restricted)
-        if (!passed_.count(e->key)) todo.push_back(e);
+    {
+        auto p = passed_.begin(); // both sorted by key
+        for (const auto* e : restricted) {
+            while (p != passed_.end() && *p < e->key) ++p;
+            if (p == passed_.end() || e->key < *p) todo.push_back(e);
+        }
+    }
     if (todo.empty()) return {};
     // The restricted triangles around each edge of the facets to check: (edge, triangle) pairs
     // sorted by edge, found by binary search. Only those edges are wanted (most rounds check a
@@ -344,9 +350,10 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
         }
     });
     std::vector<Candidate> out;
+    std::vector<FacetKey> passing; // in todo's order: sorted
     for (std::size_t i = 0; i < todo.size(); ++i) {
         if (!bad[i]) {
-            passed_.insert(todo[i]->key);
+            passing.push_back(todo[i]->key);
             continue;
         }
         const auto* e = todo[i];
@@ -365,11 +372,15 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
                 spacing = std::min(spacing, std::sqrt(CGAL::squared_distance(v->point(), x)));
         }
         if (keep_ && !keep_(x)) {
-            passed_.insert(e->key); // not ours (set_filter)
+            passing.push_back(e->key); // not ours (set_filter)
             continue;
         }
         out.push_back({x, PointKind::Geometry, spacing, e->key});
     }
+    std::vector<FacetKey> merged;
+    merged.reserve(passed_.size() + passing.size());
+    std::merge(passed_.begin(), passed_.end(), passing.begin(), passing.end(), std::back_inserter(merged));
+    passed_.swap(merged);
     return out;
 }
 

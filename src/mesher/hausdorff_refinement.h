@@ -27,7 +27,6 @@
 #include "mesher/closed_ball.h"
 #include "octree/sample_field.h"
 
-#include <unordered_set>
 #include <vector>
 
 namespace isodel::mesher {
@@ -55,7 +54,10 @@ private:
     double eps_;
     double snap_radius_;
     openvdb::math::Mat3d index_to_world_, world_to_index_;
-    std::unordered_set<FacetKey, FacetKeyHash> passed_;
+    // Keys of the facets that passed, sorted. `restricted` comes sorted by key too, so finding the
+    // facets still to check is one merge walk: a hash lookup per restricted facet cost 40-90 ms
+    // per round on a 128^3 protein (373 k facets), in each of a dozen rounds checking a handful.
+    std::vector<FacetKey> passed_;
     std::vector<openvdb::Coord> crossed_cells_;
     // Per crossed cell, what the last crease check found: no crease sample at all (F does not
     // change, so never again), or passed with these triangles nearest to its samples.

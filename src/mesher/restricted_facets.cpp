@@ -276,11 +276,16 @@ void FacetCache::merge_pending() const
                       active_.end());
     }
     std::sort(pending_added_.begin(), pending_added_.end(), by_key);
-    std::vector<Entry> merged;
-    merged.reserve(active_.size() + pending_added_.size());
-    std::merge(active_.begin(), active_.end(), pending_added_.begin(), pending_added_.end(),
-               std::back_inserter(merged), by_key);
-    active_.swap(merged);
+    // Merged in place from the back (as std::merge: on equal keys the active entry first). A
+    // fresh 18 MB array per round (373 k entries of a 128^3 protein) cost its page faults in
+    // each of ~150 rounds, most of which add a handful of entries.
+    const std::size_t n = active_.size();
+    active_.resize(n + pending_added_.size());
+    auto out = active_.end(), a = active_.begin() + std::ptrdiff_t(n);
+    for (auto b = pending_added_.end(); b != pending_added_.begin();) {
+        if (a != active_.begin() && by_key(*(b - 1), *(a - 1))) *--out = *--a;
+        else *--out = *--b;
+    }
     pending_changed_.clear();
     pending_added_.clear();
 }
