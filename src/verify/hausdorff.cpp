@@ -6,7 +6,8 @@
 //   1. Newton projection of p along the world gradient of F (converges to |phi| ~ roundoff);
 //   2. when 1. fails or gives more than eps/2 (where an overestimate could flip the verdict):
 //      a local reference - marching tetrahedra at R = 8 in every crossed cell meeting the ball
-//      B(p, d1) - the closest point on it to p, itself Newton-projected onto Sigma.
+//      B(p, d1) - the closest point on it to p, itself Newton-projected onto Sigma
+//      (local_reference.h).
 // Since both are points of Sigma, the reported values are upper bounds of d(p, Sigma): the
 // reference contributes no error to a "pass" (only roundoff of the Newton tolerance, 1e-12 of
 // the value range). What remains is sampling: sup over M <= max + sample_spacing.
@@ -17,7 +18,7 @@
 // of a sub-lattice diagonal, sqrt(3) voxel / R_h).
 #include "verify/checks.h"
 
-#include "geometry/closest_on_triangle.h"
+#include "verify/local_reference.h"
 #include "verify/refined_lattice.h"
 
 #include <CGAL/AABB_traits.h>
@@ -35,8 +36,6 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
-#include <unordered_map>
-#include <unordered_set>
 
 namespace isodel::verify {
 namespace {
@@ -77,12 +76,6 @@ struct Accum {
     }
 };
 
-std::uint64_t cell_key(const Coord& c, const Coord& base)
-{
-    return (std::uint64_t(c[0] - base[0]) << 42) | (std::uint64_t(c[1] - base[1]) << 21) |
-           std::uint64_t(c[2] - base[2]);
-}
-
 } // namespace
 
 HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, double eps, int sigma_refine)
@@ -99,8 +92,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
 
     Coord base;
     const std::vector<Coord> cells = crossed_cells(field, base);
-    std::unordered_set<std::uint64_t> crossed;
-    for (const Coord& c : cells) crossed.insert(cell_key(c, base));
+    const CrossedCellSet crossed(cells, base);
 
     auto vtx = [&](std::int32_t i) {
         const auto& v = mesh.vertices[std::size_t(i)];
@@ -142,88 +134,17 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
     rep.surface_to_mesh = s2m.stats(voxel, std::sqrt(3.0) * voxel / Rh);
 
     // ---- M -> Sigma ----
-    constexpr int kLocalR = 8;
     constexpr std::size_t kFallbackBudget = 2000000; // local searches are cheap (a few cells each)
     std::atomic<std::size_t> fallbacks{0}, unresolved{0};
     double spacing = 0.0;
     std::mutex spacing_mutex;
-    // A cell's refined triangles in world coordinates, and which of their vertices lie on
-    // axis-aligned sub-lattice edges (exactly on Sigma, see below). Neighbouring samples search
-    // the same cells, so each thread keeps the last kCacheCells cells' triangles: the same values
-    // in the same order as refining again, so the distances are unchanged.
-    struct CellTriangles {
-        std::vector<std::array<Vec3d, 3>> tri;
-        std::vector<std::uint8_t> on_sigma; // bit v: vertex v is on an axis-aligned edge
-    };
-    constexpr std::size_t kCacheCells = 4096;
     struct Local2 {
         TrilinearField::Evaluator ev;
-        CellRefiner refiner;
+        LocalReference reference;
         Accum acc;
         double spacing = 0.0;
-        std::unordered_map<std::uint64_t, CellTriangles> cache;
     };
-    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), CellRefiner(kLocalR, nullptr, base), {}, 0.0, {}}; });
-    auto cell_triangles = [&](Local2& L, const Coord& c) -> const CellTriangles& {
-        const std::uint64_t key = cell_key(c, base);
-        auto it = L.cache.find(key);
-        if (it != L.cache.end()) return it->second;
-        if (L.cache.size() >= kCacheCells) L.cache.clear();
-        CellTriangles& ct = L.cache[key];
-        L.refiner.run(L.ev.reader(), c, [&](const RefTriangle& t) {
-            std::uint8_t on = 0;
-            for (int v = 0; v < 3; ++v) {
-                const unsigned dir = unsigned(t.key[v] & 7u);
-                if (dir == 1 || dir == 2 || dir == 4) on |= std::uint8_t(1u << v);
-            }
-            ct.tri.push_back({field.to_world(t.pos[0]), field.to_world(t.pos[1]), field.to_world(t.pos[2])});
-            ct.on_sigma.push_back(on);
-        });
-        return ct;
-    };
-
-    auto local_search = [&](Local2& L, const Vec3d& p, double r, double& best) {
-        // Conservative index box of the world ball B(p, r): image of its world bounding box.
-        Vec3d lo(1e300), hi(-1e300);
-        for (int c = 0; c < 8; ++c) {
-            const Vec3d w = p + Vec3d(c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r);
-            const Vec3d x = field.to_index(w);
-            for (int a = 0; a < 3; ++a) {
-                lo[a] = std::min(lo[a], x[a]);
-                hi[a] = std::max(hi[a], x[a]);
-            }
-        }
-        Vec3d bestq;
-        double bestd = 1e300;
-        // Vertices of the refined triangles on axis-aligned sub-lattice edges are on Sigma (F is
-        // linear along an axis line inside a cell), so the nearest one bounds dist(p, Sigma) above
-        // when the projection below does not converge (e.g. where F is flat).
-        double vertex_bound = 1e300;
-        for (int k = int(std::floor(lo[2])); k <= int(std::floor(hi[2])); ++k)
-            for (int j = int(std::floor(lo[1])); j <= int(std::floor(hi[1])); ++j)
-                for (int i = int(std::floor(lo[0])); i <= int(std::floor(hi[0])); ++i) {
-                    const Coord c(i, j, k);
-                    if (c[0] < base[0] || c[1] < base[1] || c[2] < base[2] || !crossed.count(cell_key(c, base))) continue;
-                    const CellTriangles& ct = cell_triangles(L, c);
-                    for (std::size_t i = 0; i < ct.tri.size(); ++i) {
-                        const auto& w = ct.tri[i];
-                        const Vec3d q = geometry::closest_on_triangle(p, w[0], w[1], w[2]);
-                        for (int v = 0; v < 3; ++v)
-                            if (ct.on_sigma[i] >> v & 1u) // axis-aligned: exactly on Sigma
-                                vertex_bound = std::min(vertex_bound, (w[std::size_t(v)] - p).length());
-                        const double d = (q - p).length();
-                        if (d < bestd) {
-                            bestd = d;
-                            bestq = q;
-                        }
-                    }
-                }
-        if (bestd == 1e300) return false;
-        Vec3d y;
-        if (L.ev.project(field.to_index(bestq), y)) vertex_bound = std::min(vertex_bound, (field.to_world(y) - p).length());
-        best = std::min(best, vertex_bound);
-        return true;
-    };
+    tbb::enumerable_thread_specific<Local2> locals2([&] { return Local2{TrilinearField::Evaluator(field), LocalReference(field, crossed), {}, 0.0}; });
 
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangles.size(), 64), [&](const auto& r) {
         Local2& L = locals2.local();
@@ -241,7 +162,7 @@ HausdorffReport hausdorff(const TrilinearField& field, const SurfaceMesh& mesh, 
                     double d = ok ? (field.to_world(y) - p).length() : 1e300;
                     if ((!ok || d > 0.5 * eps) && fallbacks.fetch_add(1) < kFallbackBudget) {
                         const double radius = ok ? d : 2.0 * eps + 2.0 * voxel;
-                        local_search(L, p, radius, d);
+                        L.reference.search(p, radius, d);
                     }
                     if (d == 1e300) {
                         ++unresolved;
