@@ -132,6 +132,13 @@ struct MeshStats {
     /// Seconds per phase: read, points, delaunay, closed_ball, refine, tets, write, total (and
     /// blocks, the concurrent block phase of partitioned meshing).
     std::map<std::string, double> seconds;
+    /// seconds["closed_ball"] + seconds["refine"] by step, over all rounds (the rest is
+    /// bookkeeping): grid_cells (Theorem 3: Voronoi cells of G points), facet_records (crossings
+    /// of the Voronoi edges of new facets), violation_scan (CBP_VE, CBP_VF, CBP_VC, paper eps),
+    /// facet_loops (loops inside Voronoi facets), cell_disks (Sigma in a Voronoi cell is a disk),
+    /// hausdorff (both one-sided distances per facet), creases, facet_angle, insertion (CGAL's
+    /// insertions of N) and voxel_bound (the new points' Voronoi cells measured).
+    std::map<std::string, double> refinement_seconds;
     std::size_t peak_memory_bytes = 0;
     /// Voxel bound (Theorem 2): the most cells a Voronoi cell of an E / N point met, and the
     /// bound it is held to.

@@ -51,6 +51,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+/// Adds the seconds of its scope to \p total (MeshStats::refinement_seconds).
+struct StepTimer {
+    double& total;
+    Clock::time_point t0 = Clock::now();
+    ~StepTimer() { total += since(t0); }
+};
+
 std::size_t peak_memory_bytes()
 {
     rusage ru{};
@@ -253,6 +260,11 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     // Optional facet angle refinement: its own bound (E-point clusters make graded refinement).
     const std::size_t max_angle_points = 2 * st.e_points + 10000;
     double t_topology = 0, t_refine = 0;
+    auto& steps = st.refinement_seconds;
+    for (const char* k : {"grid_cells", "facet_records", "violation_scan", "facet_loops", "cell_disks", "hausdorff",
+                          "creases", "insertion", "voxel_bound"})
+        steps[k] = 0;
+    if (options.facet_angle_deg > 0) steps["facet_angle"] = 0;
     const std::size_t n_before_loops = st.n_topology + st.n_geometry;
     {
         InterruptScope scope(interrupter, "closed_ball");
@@ -287,21 +299,30 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             // 4.9 M records, then 2.9 M in one scan after them. A grid cell's check reads no
             // record, and its segment walks have their own bound, so voxel-bound holes can wait.
             if (!cache.scanned()) {
+                StepTimer timer{steps["grid_cells"]};
                 rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
                 filter_candidates(rep.candidates, run.keep);
             }
             if (rep.candidates.empty()) {
-                cache.update(dt, field, max_cells_walk);
+                {
+                    StepTimer timer{steps["facet_records"]};
+                    cache.update(dt, field, max_cells_walk);
+                }
                 t_update = since(tr);
                 // Then: voxel-bound holes, Theorem 3 again, the ViolationFinder's classes; the
                 // later checks run only when the earlier ones found nothing.
                 const bool unbounded = std::any_of(cache.active().begin(), cache.active().end(),
                                                    [](const FacetCache::Entry& e) { return e.overflow; });
+                StepTimer timer{steps["grid_cells"]};
                 if (!unbounded) rep.candidates = grid_cell_violations(dt, field, grid_pending, max_cells_walk);
                 filter_candidates(rep.candidates, run.keep);
             }
-            if (!rep.candidates.empty()) rep.kind = Violation::GridCell;
-            else rep = violations.find(cache, eps, run.keep);
+            if (!rep.candidates.empty()) {
+                rep.kind = Violation::GridCell;
+            } else {
+                StepTimer timer{steps["violation_scan"]};
+                rep = violations.find(cache, eps, run.keep);
+            }
             if (std::getenv("ISODEL_TRACE"))
                 std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
                              to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
@@ -310,6 +331,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 // Loops inside Voronoi facets (CBP_VF, second clause): once the cheaper checks pass.
                 const auto tl = Clock::now();
                 rep.candidates = loops.scan(dt, field, max_cells_walk);
+                steps["facet_loops"] += since(tl);
                 if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  loops %.2f ms\n", 1e3 * since(tl));
                 filter_candidates(rep.candidates, run.keep);
                 if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
@@ -319,6 +341,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 const auto td = Clock::now();
                 VoronoiCellDiskStats ds;
                 rep.candidates = voronoi_cell_disk_violations(dt, field, disk_pending, slabs.h * field.min_voxel_edge(), &ds);
+                steps["cell_disks"] += since(td);
                 if (std::getenv("ISODEL_TRACE"))
                     std::fprintf(stderr, "  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated\n",
                                  1e3 * since(td), ds.certified, ds.sampled, ds.unresolved, rep.candidates.size());
@@ -326,22 +349,25 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 if (!rep.candidates.empty()) rep.kind = Violation::VoronoiCellDisk;
             }
             if (rep.kind == Violation::None) {
+                const auto th = Clock::now();
                 std::vector<const FacetCache::Entry*> restricted;
                 for (const auto& e : cache.active())
                     if (e.crossings == 1) restricted.push_back(&e);
-                const auto th = Clock::now();
                 rep.candidates = hausdorff.violations(restricted);
+                steps["hausdorff"] += since(th);
                 if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  hausdorff %.2f ms\n", 1e3 * since(th));
                 filter_candidates(rep.candidates, run.keep);
                 if (rep.candidates.empty()) {
                     const auto tc = Clock::now();
                     rep.candidates = hausdorff.crease_violations(restricted);
+                    steps["creases"] += since(tc);
                     if (std::getenv("ISODEL_TRACE")) std::fprintf(stderr, "  crease %.2f ms\n", 1e3 * since(tc));
                     filter_candidates(rep.candidates, run.keep);
                 }
                 if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
             }
             if (rep.kind == Violation::None && options.facet_angle_deg > 0 && st.facet_angle_stop.empty()) {
+                StepTimer timer{steps["facet_angle"]};
                 // Optional triangle quality, last: every guarantee holds here, so stopping it at
                 // its bound leaves a certified mesh (facet_angle_stop says why it stopped).
                 std::vector<const FacetCache::Entry*> restricted;
@@ -352,7 +378,10 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 else if (st.n_facet_angle >= max_angle_points) st.facet_angle_stop = "point bound";
                 else rep.kind = Violation::FacetAngle;
             }
-            if (rep.kind == Violation::None) break;
+            if (rep.kind == Violation::None) {
+                t_refine += since(tr); // the last round: every check passed
+                break;
+            }
             if (rep.kind == Violation::Unbounded) {
                 // Surface facets whose Voronoi edge left the bound: repair around their vertices.
                 for (const auto& e : cache.active())
@@ -361,13 +390,19 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                             if (v->info().on_surface()) over_bound.push_back(v);
                 if (st.bound_repairs > 10 * st.g_points + 1000)
                     throw GuaranteeViolated("voxel bound repairs did not converge");
+                t_topology += since(tr);
                 continue;
             }
             const double t_checks = since(tr) - t_update;
             const auto ti = Clock::now();
             const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
             const double t_insert = since(ti);
-            std::vector<int> counts = voronoi_cell_counts(dt, ins.inserted, field, leaves.get());
+            steps["insertion"] += t_insert;
+            std::vector<int> counts;
+            {
+                StepTimer timer{steps["voxel_bound"]};
+                counts = voronoi_cell_counts(dt, ins.inserted, field, leaves.get());
+            }
             for (std::size_t i = 0; i < ins.inserted.size(); ++i) {
                 const Vertex_handle v = ins.inserted[i];
                 loops.touched(v);
@@ -386,12 +421,26 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
             std::size_t cascade = 0;
             while (rep.kind == Violation::VoronoiEdge && over_bound.empty() &&
                    st.n_geometry + st.n_topology <= max_points) {
-                cache.update(dt, field, max_cells_walk);
-                const auto more = voronoi_edge_violations(cache.recent(), run.keep);
+                {
+                    StepTimer timer{steps["facet_records"]};
+                    cache.update(dt, field, max_cells_walk);
+                }
+                std::vector<Candidate> more;
+                {
+                    StepTimer timer{steps["violation_scan"]};
+                    more = voronoi_edge_violations(cache.recent(), run.keep);
+                }
                 if (more.empty()) break;
-                const InsertionResult next = insert_candidates(dt, cache, more, next_id, hash_cell);
+                InsertionResult next;
+                {
+                    StepTimer timer{steps["insertion"]};
+                    next = insert_candidates(dt, cache, more, next_id, hash_cell);
+                }
                 if (next.inserted.empty()) break;
-                counts = voronoi_cell_counts(dt, next.inserted, field, leaves.get());
+                {
+                    StepTimer timer{steps["voxel_bound"]};
+                    counts = voronoi_cell_counts(dt, next.inserted, field, leaves.get());
+                }
                 for (std::size_t i = 0; i < next.inserted.size(); ++i) {
                     const Vertex_handle v = next.inserted[i];
                     loops.touched(v);

@@ -20,6 +20,12 @@ std::string to_json(const MeshStats& s)
         o << (first ? "" : ", ") << '"' << k << "\": " << v;
         first = false;
     }
+    o << "},\n  \"refinement_seconds\": {";
+    first = true;
+    for (const auto& [k, v] : s.refinement_seconds) {
+        o << (first ? "" : ", ") << '"' << k << "\": " << v;
+        first = false;
+    }
     o << "},\n  \"peak_memory_bytes\": " << s.peak_memory_bytes << ",\n";
     o << "  \"voxel_bound\": {\"max_cells_E\": " << s.max_cells_e << ", \"bound_E\": " << s.bound_e
       << ", \"max_cells_N\": " << s.max_cells_n << ", \"bound_N\": " << s.bound_n

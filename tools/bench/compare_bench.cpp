@@ -136,6 +136,14 @@ std::string phases(const isodel::MeshStats& st)
         std::snprintf(buf, sizeof buf, "%s%s %.2f", s.empty() ? "" : ", ", k, it->second);
         s += buf;
     }
+    // The three largest steps of closed_ball + refine (MeshStats::refinement_seconds).
+    std::vector<std::pair<double, std::string>> steps;
+    for (const auto& [k, v] : st.refinement_seconds) steps.emplace_back(-v, k);
+    std::sort(steps.begin(), steps.end());
+    for (std::size_t i = 0; i < steps.size() && i < 3; ++i) {
+        std::snprintf(buf, sizeof buf, "%s%s %.2f", i ? ", " : "; steps: ", steps[i].second.c_str(), -steps[i].first);
+        s += buf;
+    }
     return s;
 }
 
