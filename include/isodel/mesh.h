@@ -129,15 +129,17 @@ struct MeshStats {
     int rounds = 0;
     double effective_isovalue = 0.0;
     double eps_world = 0.0;
-    /// Seconds per phase: read, points, delaunay, closed_ball, refine, tets, write, total (and
-    /// blocks, the concurrent block phase of partitioned meshing).
+    /// Seconds per phase: read, points, delaunay, voxel_bound, closed_ball, refine, extract,
+    /// tets, write, total (and blocks, the concurrent block phase of partitioned meshing;
+    /// certify with MeshOptions::certify; resample for an adaptive input read densely).
     std::map<std::string, double> seconds;
     /// seconds["closed_ball"] + seconds["refine"] by step, over all rounds (the rest is
     /// bookkeeping): grid_cells (Theorem 3: Voronoi cells of G points), facet_records (crossings
     /// of the Voronoi edges of new facets), violation_scan (CBP_VE, CBP_VF, CBP_VC, paper eps),
     /// facet_loops (loops inside Voronoi facets), cell_disks (Sigma in a Voronoi cell is a disk),
     /// hausdorff (both one-sided distances per facet), creases, facet_angle, insertion (CGAL's
-    /// insertions of N) and voxel_bound (the new points' Voronoi cells measured).
+    /// insertions of N and of voxel-bound repairs) and voxel_bound_n (the voxel bound measured
+    /// on the new points' Voronoi cells).
     std::map<std::string, double> refinement_seconds;
     std::size_t peak_memory_bytes = 0;
     /// Voxel bound (Theorem 2): the most cells a Voronoi cell of an E / N point met, and the

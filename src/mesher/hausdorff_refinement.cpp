@@ -1,10 +1,7 @@
 #include "mesher/hausdorff_refinement.h"
 
-#include "octree/cell_function.h"
-
 #include "geometry/closest_on_triangle.h"
-#include "geometry/triangle_corner_reach.h"
-
+#include "mesher/triangle_to_surface.h"
 #include "octree/cell_interpolant.h"
 #include "octree/segment_walk.h"
 
@@ -19,9 +16,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
-#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -30,212 +28,7 @@ namespace isodel::mesher {
 namespace {
 
 using Vec3d = openvdb::Vec3d;
-
-/// The last cell Newton read, with its F': Newton's steps are short and the samples of one
-/// triangle lie in a cell or two, so most projections start in the cell the previous one read.
-struct LastCell {
-    openvdb::Coord cell{std::numeric_limits<int>::min()};
-    octree::CellFunction f;
-};
-
-/// Newton projection of a world point onto Sigma along the world gradient of phi. Returns false
-/// when it does not converge (flat phi): the caller then has no bound from it.
-bool project(const octree::SampleField::Reader& reader, LastCell& last, const openvdb::math::Mat3d& to_index,
-             double step_cap, const Vec3d& w0, Vec3d& out)
-{
-    const auto& field = reader.field();
-    Vec3d x = field.world_to_index(w0);
-    const octree::CellFunction& f = last.f;
-    const openvdb::math::Mat3d to_index_t = to_index.transpose();
-    for (int it = 0; it < 30; ++it) {
-        const openvdb::Coord c(int(std::floor(x[0])), int(std::floor(x[1])), int(std::floor(x[2])));
-        if (c != last.cell) {
-            last.f = octree::cell_function(reader, c);
-            last.cell = c;
-        }
-        const Vec3d l = x - c.asVec3d();
-        const double phi = f(l[0], l[1], l[2]);
-        const Vec3d gw = to_index_t * f.gradient(l[0], l[1], l[2]); // world gradient
-        const double g2 = gw.lengthSqr();
-        if (!(g2 > 0)) return false;
-        Vec3d dw = gw * (-phi / g2);
-        const double len = dw.length();
-        if (len > step_cap) dw *= step_cap / len;
-        x += to_index * dw;
-        if (len < 1e-10 * step_cap) {
-            out = field.index_to_world(x);
-            return true;
-        }
-    }
-    return false;
-}
-
-/// The crossing of Sigma nearest to s on the segment s -/+ reach along n (Newton's fallback
-/// where phi is flat).
-bool along_normal(const octree::SampleField::Reader& reader, const Vec3d& s, Vec3d n, double reach, Vec3d& out)
-{
-    const double len = n.length();
-    if (!(len > 0)) return false;
-    n *= reach / len;
-    const auto& field = reader.field();
-    const Vec3d a = field.world_to_index(s - n), b = field.world_to_index(s + n);
-    const auto sc = octree::segment_crossings(reader, a, b, 256);
-    if (sc.overflow || sc.t.empty()) return false;
-    double best = sc.t.front();
-    for (double t : sc.t)
-        if (std::abs(t - 0.5) < std::abs(best - 0.5)) best = t;
-    out = field.index_to_world(a + best * (b - a));
-    return true;
-}
-
-/// M -> Sigma on one triangle, as a bound: d(x, Sigma) <= d(s, Sigma) + |x - s|, and every point
-/// of a triangle is within its corner reach r of a corner (geometry::triangle_corner_reach: the
-/// circumradius, or half the longest edge L when not acute; r <= L / sqrt(3)). A sub-triangle
-/// passes when the largest bound at its corners plus r is at most `pass`; otherwise it is split
-/// in four at its edge midpoints, down to edges of `leaf`, where each corner must be within
-/// `limit` of Sigma. That is the rule of a barycentric sample grid of spacing `leaf`
-/// (pass = limit + leaf / sqrt(3) bounds the same distance) without projecting every grid
-/// sample: a triangle lying on Sigma within a few hundredths of eps passes after a dozen Newton
-/// projections instead of ~200. Splitting stops after kMaxDepth halvings: a sub-triangle still
-/// longer than `leaf` there must pass the covering bound itself, so every pass is certified by
-/// pass <= eps whatever the triangle's size.
-/// A sample is projected once per triangle: the midpoint of an edge shared by two sub-triangles
-/// is reached from both, so projections are remembered by the sample's position on the
-/// triangle's finest sample grid (kMaxDepth halvings).
-class TriangleToSurface {
-public:
-    TriangleToSurface(const octree::SampleField::Reader& reader, const openvdb::math::Mat3d& to_index, double step_cap,
-                      double limit, double leaf, double reach)
-        : reader_(reader), to_index_(to_index), step_cap_(step_cap), limit_(limit), leaf_(leaf),
-          pass_(limit + leaf / std::sqrt(3.0)), reach_(reach), memo_(std::size_t(kGrid + 1) * (kGrid + 1))
-    {
-    }
-
-    /// True when triangle abc is within the bound of Sigma. \p p is a point of Sigma (the
-    /// facet's surface point), \p off how far each vertex may be from Sigma. On failure \p at is
-    /// a point of Sigma near the offending sample when one was found.
-    bool check(const Vec3d& a, const Vec3d& b, const Vec3d& c, const double off[3], const Vec3d& p,
-               std::optional<Vec3d>& at)
-    {
-        p_ = p;
-        normal_ = (b - a).cross(c - a);
-        at_ = &at;
-        if (++stamp_ == 0) { // wrapped: forget every stamp
-            for (auto& m : memo_) m.stamp = 0;
-            stamp_ = 1;
-        }
-        Corner A{a, off[0], true, {}, kGrid, 0, a}, B{b, off[1], true, {}, 0, kGrid, b},
-            C{c, off[2], true, {}, 0, 0, c};
-        return passes(A, B, C, 0);
-    }
-
-private:
-    struct Corner {
-        Vec3d s;
-        double d;             ///< d(s, Sigma) <= d
-        bool exact = false;   ///< d already includes the Newton projection
-        std::optional<Vec3d> q; ///< that projection
-        int u = 0, v = 0;       ///< barycentric weights of a and b on the finest grid (kGrid)
-        Vec3d start;            ///< where Newton starts (a midpoint: between its ends' projections)
-    };
-
-    /// A corner's own point of Sigma when it has one: a midpoint's Newton start between the
-    /// projections of its ends lies within the chord's sagitta of Sigma, closer than the
-    /// midpoint itself, so Newton needs fewer steps; any point of Sigma bounds the distance.
-    static const Vec3d& on_sigma(const Corner& x) { return x.q ? *x.q : x.s; }
-
-    /// The projection of one sample of the current triangle (check()'s stamp).
-    struct Projected {
-        std::uint32_t stamp = 0;
-        Vec3d s;                ///< the sample
-        std::optional<Vec3d> q; ///< its Newton projection, when it converged
-    };
-
-    void tighten(Corner& x)
-    {
-        if (x.exact) return;
-        x.exact = true;
-        Projected& m = memo_[std::size_t(x.u) * (kGrid + 1) + std::size_t(x.v)];
-        // The same grid position gives the same sample (midpoints are symmetric in their ends);
-        // comparing s keeps that an optimisation, not an assumption.
-        if (m.stamp != stamp_ || m.s != x.s) {
-            m.stamp = stamp_;
-            m.s = x.s;
-            Vec3d q;
-            m.q.reset();
-            if (project(reader_, last_cell_, to_index_, step_cap_, x.start, q)) m.q = q;
-        }
-        if (m.q) {
-            x.q = m.q;
-            x.d = std::min(x.d, (*m.q - x.s).length());
-        }
-    }
-
-    /// A point of Sigma near the failing corner x, for the caller to insert instead of p.
-    void report(const Corner& x) const
-    {
-        Vec3d q;
-        if (x.q) *at_ = x.q;
-        else if (along_normal(reader_, x.s, normal_, reach_, q)) *at_ = q;
-    }
-
-    Corner midpoint(const Corner& x, const Corner& y) const
-    {
-        Corner m{0.5 * (x.s + y.s), 0.0, false, {}, (x.u + y.u) / 2, (x.v + y.v) / 2,
-                 0.5 * (on_sigma(x) + on_sigma(y))};
-        const double h = 0.5 * (x.s - y.s).length();
-        m.d = std::min({x.d + h, y.d + h, (m.s - p_).length()});
-        return m;
-    }
-
-    bool passes(Corner& A, Corner& B, Corner& C, int depth)
-    {
-        const double L = std::max({(B.s - A.s).length(), (C.s - B.s).length(), (A.s - C.s).length()});
-        const double reach = geometry::triangle_corner_reach(A.s, B.s, C.s);
-        const auto covered = [&] { return std::max({A.d, B.d, C.d}) + reach <= pass_; };
-        if (covered()) return true;
-        if (L <= leaf_) {
-            for (Corner* x : {&A, &B, &C}) {
-                if (x->d <= limit_) continue;
-                tighten(*x);
-                if (x->d <= limit_) continue;
-                report(*x);
-                return false;
-            }
-            return true;
-        }
-        tighten(A);
-        tighten(B);
-        tighten(C);
-        if (covered()) return true;
-        if (depth >= kMaxDepth) {
-            // Edges still longer than `leaf` (a triangle over 32 leaves long): corners within
-            // `limit` would not bound the points between them, so only the covering bound
-            // passes; otherwise the triangle fails and its surface point p is inserted (or a
-            // point of Sigma near a corner that is itself too far).
-            for (const Corner* x : {&A, &B, &C})
-                if (x->d > limit_) {
-                    report(*x);
-                    break;
-                }
-            return false;
-        }
-        Corner ab = midpoint(A, B), bc = midpoint(B, C), ca = midpoint(C, A);
-        return passes(A, ab, ca, depth + 1) && passes(ab, B, bc, depth + 1) && passes(ca, bc, C, depth + 1) &&
-               passes(ab, bc, ca, depth + 1);
-    }
-
-    static constexpr int kMaxDepth = 5; // 32 sub-edges per edge (the sample grid had at most 24)
-    static constexpr int kGrid = 1 << kMaxDepth;
-    const octree::SampleField::Reader& reader_;
-    const openvdb::math::Mat3d& to_index_;
-    double step_cap_, limit_, leaf_, pass_, reach_;
-    Vec3d p_, normal_;
-    std::optional<Vec3d>* at_ = nullptr;
-    std::vector<Projected> memo_; ///< by (u, v) of the finest grid
-    std::uint32_t stamp_ = 0;
-    LastCell last_cell_;
-};
+using detail::TriangleToSurface;
 
 const FacetKey& key_of(const FacetKey& k) { return k; }
 const FacetKey& key_of(const FacetCache::Entry* e) { return e->key; }
@@ -265,6 +58,8 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
     // Triangles around each restricted edge, for the Sigma -> M check of p.
     std::vector<const FacetCache::Entry*> todo;
     {
+        assert(std::is_sorted(restricted.begin(), restricted.end(),
+                              [](const auto* x, const auto* y) { return x->key < y->key; }));
         auto p = passed_.begin(); // both sorted by key
         for (const auto* e : restricted) {
             while (p != passed_.end() && *p < e->key) ++p;
@@ -345,7 +140,7 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
                 bad[i] = 1;
                 continue;
             }
-            // M -> Sigma (TriangleToSurface above).
+            // M -> Sigma (triangle_to_surface.h).
             if (!to_surface.check(a, b, c, off, p, at[i])) bad[i] = 1;
         }
     });
@@ -377,10 +172,12 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
         }
         out.push_back({x, PointKind::Geometry, spacing, e->key});
     }
-    std::vector<FacetKey> merged;
-    merged.reserve(passed_.size() + passing.size());
-    std::merge(passed_.begin(), passed_.end(), passing.begin(), passing.end(), std::back_inserter(merged));
-    passed_.swap(merged);
+    if (!passing.empty()) {
+        std::vector<FacetKey> merged;
+        merged.reserve(passed_.size() + passing.size());
+        std::merge(passed_.begin(), passed_.end(), passing.begin(), passing.end(), std::back_inserter(merged));
+        passed_.swap(merged);
+    }
     return out;
 }
 

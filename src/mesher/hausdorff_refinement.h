@@ -39,7 +39,8 @@ public:
                         double snap_radius = 0.0);
 
     /// Candidates (surface points of the offending facets) among the restricted facets not
-    /// checked before. \p restricted: the facets with one crossing.
+    /// checked before. \p restricted: the facets with one crossing, sorted by key without
+    /// repeats (FacetCache::active()'s order).
     std::vector<Candidate> violations(const std::vector<const FacetCache::Entry*>& restricted);
 
     /// Crease samples farther than the threshold from the triangles of \p restricted.

@@ -1,5 +1,5 @@
 #pragma once
-// Internal: DELSURFMESH on a SampleField (mesh_isosurface.cpp), the entry point shared by the
+// Internal: DELSURFMESH on a SampleField (mesh_field.cpp), the entry point shared by the
 // public mesh_isosurface overloads and partitioned meshing (partitioned_meshing.h).
 #include "mesher/closed_ball.h"
 #include "mesher/delaunay.h"

@@ -7,9 +7,10 @@
 // (F is linear along an axis line inside a cell, so that vertex is exactly on Sigma).
 //
 // Neighbouring samples search the same cells, so a LocalReference (one per thread) keeps the
-// refined triangles of its last cells: the same values in the same order as refining again, so
-// every bound is bit-identical with or without the cache (tests/verify/
-// test_verify_local_reference.cpp compares the two).
+// refined triangles of the cells it visited, up to a number of cells, and then forgets them all
+// and starts again: the same values in the same order as refining again, so every bound is
+// bit-identical with or without the cache (tests/verify/test_verify_local_reference.cpp
+// compares the two).
 #include "verify/refined_lattice.h"
 #include "verify/trilinear_field.h"
 

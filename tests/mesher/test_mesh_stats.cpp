@@ -24,21 +24,22 @@ TEST_CASE("refinement_seconds splits the closed-ball and refine phases by step",
         const double phases = r.stats.seconds.at("closed_ball") + r.stats.seconds.at("refine");
         double sum = 0;
         for (const char* k : {"grid_cells", "facet_records", "violation_scan", "facet_loops", "cell_disks", "hausdorff",
-                              "creases", "insertion", "voxel_bound"}) {
+                              "creases", "insertion", "voxel_bound_n"}) {
             INFO(k);
             REQUIRE(steps.count(k) == 1);
             CHECK(steps.at(k) >= 0);
         }
         for (const char* k : {"grid_cells", "facet_records", "violation_scan", "facet_loops", "cell_disks", "hausdorff",
-                              "creases", "insertion"}) {
+                              "creases", "insertion", "voxel_bound_n"}) {
             INFO(k << " did work on this volume");
             CHECK(steps.at(k) > 0);
         }
         CHECK(steps.count("facet_angle") == (angle > 0 ? 1u : 0u));
+        if (angle > 0) CHECK(steps.at("facet_angle") > 0);
         for (const auto& [k, v] : steps) sum += v;
         INFO("steps " << sum << " s, closed_ball + refine " << phases << " s");
         CHECK(sum <= phases + 1e-9);
-        CHECK(sum >= 0.5 * phases);
+        CHECK(sum >= 0.3 * phases); // the rest is bookkeeping (97 % are steps on a 128^3 protein)
         const std::string json = to_json(r.stats);
         CHECK(json.find("\"refinement_seconds\": {\"cell_disks\": ") != std::string::npos);
     }

@@ -126,7 +126,8 @@ TEST_CASE("partitioned meshes verify: topology, eps and Delaunay conformity", "[
 TEST_CASE("partitioned meshing gives the same mesh with 1 and 2 threads", "[mesher][partition][determinism]")
 {
     // 8 blocks of 8 voxels, each box (collar 4) most of the volume: the blocks overlap as much
-    // as they can, and two threads mesh them in a different order than one.
+    // as they can, and two threads mesh them in a different order than one. (Every block here
+    // touches the domain's faces; blocks owning a core on all sides are in the case above.)
     const auto grid = testing::random_volume(12, 7, false);
     const MeshResult a = mesh_blocks(*grid, 8, 0.25, 1);
     const MeshResult b = mesh_blocks(*grid, 8, 0.25, 2);
