@@ -198,6 +198,30 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         steps[k] = 0;
     if (options.facet_angle_deg > 0) steps["facet_angle"] = 0;
     const std::size_t n_before_loops = st.n_topology + st.n_geometry;
+    // Inserts one class's candidates and hands the new vertices to the later checks: the loop
+    // scanner, the disk certificates, the point counts and the voxel bound (Theorem 2).
+    auto insert_batch = [&](const std::vector<Candidate>& candidates, Violation kind) {
+        InsertionResult ins;
+        {
+            StepTimer timer{steps["insertion"]};
+            ins = insert_candidates(dt, cache, candidates, next_id, hash_cell);
+        }
+        std::vector<int> counts;
+        {
+            StepTimer timer{steps["voxel_bound_n"]};
+            counts = voronoi_cell_counts(dt, ins.inserted, field, leaves.get());
+        }
+        const bool geometric = kind == Violation::Epsilon || kind == Violation::Hausdorff || kind == Violation::FacetAngle;
+        for (std::size_t i = 0; i < ins.inserted.size(); ++i) {
+            const Vertex_handle v = ins.inserted[i];
+            loops.touched(v);
+            disk_pending.push_back(v);
+            if (kind == Violation::FacetAngle) ++st.n_facet_angle;
+            ++(geometric ? st.n_geometry : st.n_topology);
+            record(v, counts[i], st.max_cells_n, st.bound_n, over_bound);
+        }
+        return ins;
+    };
     {
         InterruptScope scope(interrupter, "closed_ball");
         for (;;) {
@@ -330,25 +354,9 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 continue;
             }
             const double t_checks = since(tr) - t_update;
-            const auto ti = Clock::now();
-            const InsertionResult ins = insert_candidates(dt, cache, rep.candidates, next_id, hash_cell);
-            const double t_insert = since(ti);
-            steps["insertion"] += t_insert;
-            std::vector<int> counts;
-            {
-                StepTimer timer{steps["voxel_bound_n"]};
-                counts = voronoi_cell_counts(dt, ins.inserted, field, leaves.get());
-            }
-            for (std::size_t i = 0; i < ins.inserted.size(); ++i) {
-                const Vertex_handle v = ins.inserted[i];
-                loops.touched(v);
-                disk_pending.push_back(v);
-                if (rep.kind == Violation::FacetAngle) ++st.n_facet_angle;
-                if (rep.kind == Violation::Epsilon || rep.kind == Violation::Hausdorff || rep.kind == Violation::FacetAngle)
-                    ++st.n_geometry;
-                else ++st.n_topology;
-                record(v, counts[i], st.max_cells_n, st.bound_n, over_bound);
-            }
+            const double insertion_before = steps["insertion"];
+            const InsertionResult ins = insert_batch(rep.candidates, rep.kind);
+            const double t_insert = steps["insertion"] - insertion_before;
             // CBP_VE cascades are local: splitting a Voronoi edge makes new Voronoi edges next
             // to the new point, which may cross Sigma twice again (near creases, one at a time
             // for hundreds of rounds). Follow the cascade on the facets the insertions changed
@@ -367,23 +375,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                     more = voronoi_edge_violations(cache.recent(), run.keep);
                 }
                 if (more.empty()) break;
-                InsertionResult next;
-                {
-                    StepTimer timer{steps["insertion"]};
-                    next = insert_candidates(dt, cache, more, next_id, hash_cell);
-                }
+                const InsertionResult next = insert_batch(more, Violation::VoronoiEdge);
                 if (next.inserted.empty()) break;
-                {
-                    StepTimer timer{steps["voxel_bound_n"]};
-                    counts = voronoi_cell_counts(dt, next.inserted, field, leaves.get());
-                }
-                for (std::size_t i = 0; i < next.inserted.size(); ++i) {
-                    const Vertex_handle v = next.inserted[i];
-                    loops.touched(v);
-                    disk_pending.push_back(v);
-                    ++st.n_topology;
-                    record(v, counts[i], st.max_cells_n, st.bound_n, over_bound);
-                }
                 cascade += next.inserted.size();
                 scope.check();
             }
