@@ -177,12 +177,57 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
         todo.clear();
     };
     if (initial) {
-        // Every facet once, in chunks: the to-do list of the whole first triangulation would be
-        // a peak of its own (~100 bytes a facet).
-        constexpr std::size_t kChunk = std::size_t(1) << 18;
-        for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it) {
-            if (has_surface_vertex(*it)) todo.push_back({*it, facet_key(*it), FacetRecord()});
-            if (todo.size() >= kChunk) compute();
+        // Every facet once, in the order of dt.finite_facets() (a cell's facet i when its
+        // neighbour there is not stored before it), a run of cells per task: the walk itself
+        // runs in parallel, and a task keeps only the records some check reads. Runs of
+        // kCells cells are flushed into the table in order, which bounds the transient lists.
+        // (The serial walk over the 8 M facets of a 128^3 protein's first scan took 0.5 s.)
+        constexpr std::size_t kCells = std::size_t(1) << 20, kTask = 2048;
+        std::vector<Cell_handle> cells;
+        cells.reserve(std::min<std::size_t>(kCells, dt.number_of_cells() + 8));
+        std::vector<std::vector<Todo>> kept;
+        std::vector<std::size_t> counted;
+        auto flush = [&] {
+            const std::size_t tasks = (cells.size() + kTask - 1) / kTask;
+            kept.assign(tasks, {});
+            counted.assign(tasks, 0);
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks, 1), [&](const auto& r) {
+                auto& reader = readers.local();
+                for (std::size_t t = r.begin(); t != r.end(); ++t)
+                    for (std::size_t k = t * kTask; k < std::min(cells.size(), (t + 1) * kTask); ++k) {
+                        const Cell_handle& c = cells[k];
+                        for (int i = 0; i < 4; ++i) {
+                            if (c->neighbor(i) < c) continue; // found from its neighbour
+                            const Facet f(c, i);
+                            if (dt.is_infinite(f) || !has_surface_vertex(f)) continue;
+                            ++counted[t];
+                            FacetRecord rec = compute_facet_record(dt, f, reader, max_cells);
+                            if (rec.crossings == 0 && !rec.overflow) continue;
+                            kept[t].push_back({f, facet_key(f), rec});
+                        }
+                    }
+            });
+            for (std::size_t t = 0; t < tasks; ++t) {
+                computed_ += counted[t];
+                for (const Todo& x : kept[t]) {
+                    const Stored* st = map_.try_emplace(x.key, Stored{x.facet, x.record}).first;
+                    const auto vs = facet_vertices(st->facet);
+                    const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
+                    added.push_back({st->facet, x.key, &st->record, st->record.crossings, st->record.overflow, on});
+                }
+            }
+            cells.clear();
+        };
+        if (dt.dimension() == 3) {
+            for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+                cells.push_back(c);
+                if (cells.size() == kCells) flush();
+            }
+            flush();
+        } else {
+            // A flat or smaller triangulation (degenerate input): its few facets, serially.
+            for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it)
+                if (has_surface_vertex(*it)) todo.push_back({*it, facet_key(*it), FacetRecord()});
         }
         scanned_ = true;
     } else {

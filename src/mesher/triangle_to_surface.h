@@ -53,7 +53,10 @@ inline bool project(const octree::SampleField::Reader& reader, LastCell& last, c
         const double len = dw.length();
         if (len > step_cap) dw *= step_cap / len;
         x += to_index * dw;
-        if (len < 1e-10 * step_cap) {
+        // Converged once a step is this short: Newton's error after it is of the order of the
+        // curvature times its square, below 1e-9 voxel even at a saddle. (1e-10 cost a third
+        // iteration per projection, of 21 M projections on a 128^3 protein at eps 0.1 voxel.)
+        if (len < 1e-5 * step_cap) {
             out = field.index_to_world(x);
             return true;
         }
