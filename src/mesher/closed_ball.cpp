@@ -108,22 +108,22 @@ void ViolationFinder::check_kept_verdicts(const FacetCache& cache)
     }
 }
 
-ViolationReport ViolationFinder::find(FacetCache& cache, double eps, const CandidateFilter& keep)
+ViolationReport ViolationFinder::find(FacetCache& cache, const CandidateFilter& keep)
 {
     ViolationReport rep;
-    const auto& active = cache.active();
+    // The facets of each class, in key order (FacetCache::flagged): as a scan of active().
+    const auto& flagged = cache.flagged();
+    if (self_check_) check_flagged(cache);
 
     // Unbounded Voronoi edges of surface facets mean a hole in G; the driver repairs it.
-    for (const auto& e : active)
-        if (e.overflow) rep.candidates.push_back({Point(), PointKind::Grid, 0, e.key});
+    for (const FacetKey& k : flagged.overflow) rep.candidates.push_back({Point(), PointKind::Grid, 0, k});
     if (!rep.candidates.empty()) {
         rep.kind = Violation::Unbounded;
         return rep;
     }
 
     // CBP_VE: insert the crossing farthest from the dual triangle.
-    for (const auto& e : active)
-        if (e.crossings > 1) rep.candidates.push_back(candidate_of(e, PointKind::Topology));
+    for (const FacetKey& k : flagged.multiple) rep.candidates.push_back(candidate_of(cache.entry(k), PointKind::Topology));
     filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) {
         rep.kind = Violation::VoronoiEdge;
@@ -131,11 +131,8 @@ ViolationReport ViolationFinder::find(FacetCache& cache, double eps, const Candi
     }
 
     // Facets with a grid vertex: M's vertices must be samples of Sigma.
-    for (const auto& e : active)
-        if (e.crossings == 1) {
-            ++rep.restricted_facets;
-            if (!e.all_on_surface) rep.candidates.push_back(candidate_of(e, PointKind::Topology));
-        }
+    for (const FacetKey& k : flagged.grid_vertex)
+        rep.candidates.push_back(candidate_of(cache.entry(k), PointKind::Topology));
     filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) {
         rep.kind = Violation::GridVertex;
@@ -161,12 +158,28 @@ ViolationReport ViolationFinder::find(FacetCache& cache, double eps, const Candi
         }
     }
 
-    // Step 5: geometric refinement.
-    for (const auto& e : active)
-        if (e.crossings == 1 && e.record->distance > eps) rep.candidates.push_back(candidate_of(e, PointKind::Geometry));
+    // Step 5: geometric refinement, the restricted facets farther than eps (far_distance).
+    for (const FacetKey& k : flagged.far) rep.candidates.push_back(candidate_of(cache.entry(k), PointKind::Geometry));
     filter_candidates(rep.candidates, keep);
     if (!rep.candidates.empty()) rep.kind = Violation::Epsilon;
     return rep;
+}
+
+void ViolationFinder::check_flagged(const FacetCache& cache) const
+{
+    FacetCache::Flagged scan;
+    for (const auto& e : cache.active()) {
+        if (e.overflow) scan.overflow.push_back(e.key);
+        else if (e.crossings > 1) scan.multiple.push_back(e.key);
+        else if (e.crossings == 1) {
+            if (!e.all_on_surface) scan.grid_vertex.push_back(e.key);
+            if (e.record->distance > cache.far_distance()) scan.far.push_back(e.key);
+        }
+    }
+    const auto& kept = cache.flagged();
+    if (scan.overflow != kept.overflow || scan.multiple != kept.multiple || scan.grid_vertex != kept.grid_vertex ||
+        scan.far != kept.far)
+        throw std::logic_error("ViolationFinder: the facet cache's flagged facets differ from a scan of the active ones");
 }
 
 void ViolationFinder::examine(const FacetCache& cache, std::uint32_t p)

@@ -39,7 +39,6 @@ const char* to_string(Violation v);
 struct ViolationReport {
     Violation kind = Violation::None;
     std::vector<Candidate> candidates;
-    std::size_t restricted_facets = 0;
     std::size_t orphans = 0; ///< surface vertices without restricted facets
 };
 
@@ -60,12 +59,15 @@ void filter_candidates(std::vector<Candidate>& candidates, const CandidateFilter
 class ViolationFinder {
 public:
     /// With the environment variable ISODEL_CHECK_INCREMENTAL set, every find() also examines
-    /// every vertex from scratch and throws std::logic_error if a kept verdict differs (tests).
+    /// every vertex from scratch, and classifies every active facet, and throws
+    /// std::logic_error if a kept verdict or the cache's flagged facets differ (tests).
     ViolationFinder();
 
-    ViolationReport find(FacetCache& cache, double eps, const CandidateFilter& keep = {});
+    /// The eps criterion reads FacetCache::flagged().far: the cache's far_distance is eps.
+    ViolationReport find(FacetCache& cache, const CandidateFilter& keep = {});
 
 private:
+    void check_flagged(const FacetCache& cache) const;
     void examine(const FacetCache& cache, std::uint32_t p);
     void check_kept_verdicts(const FacetCache& cache);
     bool self_check_ = false;

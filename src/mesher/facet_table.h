@@ -39,15 +39,18 @@ public:
         return {&values_[index], true};
     }
 
-    /// Whether \p key is present. Read-only: safe from several threads while nothing writes.
-    bool contains(const FacetKey& key) const
+    /// The value of \p key, or null. Read-only: safe from several threads while nothing writes.
+    const Value* find(const FacetKey& key) const
     {
-        if (size_ == 0) return false;
+        if (size_ == 0) return nullptr;
         for (std::size_t i = home(key);; i = (i + 1) & mask_) {
-            if (slots_[i].index == kEmpty) return false;
-            if (slots_[i].key == key) return true;
+            if (slots_[i].index == kEmpty) return nullptr;
+            if (slots_[i].key == key) return &values_[slots_[i].index];
         }
     }
+
+    /// Whether \p key is present. Read-only: safe from several threads while nothing writes.
+    bool contains(const FacetKey& key) const { return find(key) != nullptr; }
 
     /// Removes \p key; false when it was absent.
     bool erase(const FacetKey& key)

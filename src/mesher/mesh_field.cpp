@@ -184,6 +184,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     const int max_cells_walk = (4 * (adaptive ? 27 : st.bound_n) + 16) << (adaptive ? adaptive->max_level() : 0);
     const double hash_cell = 0.25 * field.min_voxel_edge();
     FacetCache cache;
+    cache.set_far_distance(eps); // the eps criterion's class (FacetCache::Flagged::far)
     // A snapped grid point is within snap_radius of Sigma, and Sigma' within slab_shift of it.
     HausdorffRefinement hausdorff(field, eps, std::move(crossed_cells), options.snap ? snap_radius + slab_shift : 0.0);
     hausdorff.set_filter(run.keep);
@@ -266,9 +267,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 {
                     StepTimer timer{steps["facet_records"]};
                     cache.update(dt, field, max_cells_walk);
-                    // active() merges the update into the sorted list (FacetCache::merge_pending).
-                    unbounded = std::any_of(cache.active().begin(), cache.active().end(),
-                                            [](const FacetCache::Entry& e) { return e.overflow; });
+                    unbounded = !cache.flagged().overflow.empty();
                 }
                 t_update = since(tr);
                 // Then: voxel-bound holes, Theorem 3 again, the ViolationFinder's classes; the
@@ -281,11 +280,11 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
                 rep.kind = Violation::GridCell;
             } else {
                 StepTimer timer{steps["violation_scan"]};
-                rep = violations.find(cache, eps, run.keep);
+                rep = violations.find(cache, run.keep);
             }
             if (std::getenv("ISODEL_TRACE"))
-                std::fprintf(stderr, "round %d: %s x%zu restricted=%zu computed=%zu\n", st.rounds,
-                             to_string(rep.kind), rep.candidates.size(), rep.restricted_facets,
+                std::fprintf(stderr, "round %d: %s x%zu active=%zu computed=%zu\n", st.rounds,
+                             to_string(rep.kind), rep.candidates.size(), cache.active_count(),
                              cache.computed_last_update());
             if (rep.kind == Violation::None) {
                 // Loops inside Voronoi facets (CBP_VF, second clause): once the cheaper checks pass.

@@ -5,6 +5,7 @@
 #include "octree/segment_walk.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -281,8 +282,9 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
 
     // The active list changes by the changed keys (destroyed or recomputed facets) and the
     // recomputed active facets. Merging them into the sorted list costs O(|active|), so it is
-    // done only when active() is next read (merge_pending): the cascade of CBP_VE steps in
-    // between reads recent() alone.
+    // done only when active() is next read (merge_pending): the closed-ball rounds read the
+    // flagged classes and the stars, the cascade of CBP_VE steps recent(); the Hausdorff
+    // check, extraction and the tets phase read active().
     const auto by_key = [](const Entry& a, const Entry& b) { return a.key < b.key; };
     tbb::parallel_sort(added.begin(), added.end(), by_key); // keys are unique: any sort gives one order
     tbb::parallel_sort(changed_.begin(), changed_.end());
@@ -301,8 +303,49 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
     for (const FacetKey& k : changed_) unstar(k);
     for (const Entry& e : added)
         if (e.crossings == 1) star(e);
+    update_flagged(added);
     changed_.clear();
     recent_.swap(added);
+    // Most rounds never read active() (the checks read flagged() and the stars); merge a large
+    // backlog anyway, since every update filters the pending entries against its changed keys.
+    if (pending_added_.size() + pending_changed_.size() > (std::size_t(1) << 16)) merge_pending();
+}
+
+FacetCache::Entry FacetCache::entry(const FacetKey& key) const
+{
+    const Stored* st = map_.find(key);
+    assert(st);
+    const auto vs = facet_vertices(st->facet);
+    const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
+    return {st->facet, key, &st->record, st->record.crossings, st->record.overflow, on};
+}
+
+void FacetCache::update_flagged(const std::vector<Entry>& added)
+{
+    // Both sorted: the changed keys leave each list in one merge walk, the recomputed facets of
+    // each class are merged in (a recomputed key is one of the changed or a new one, so the
+    // result has no duplicates).
+    auto refresh = [&](std::vector<FacetKey>& keys, auto&& in_class) {
+        if (!changed_.empty() && !keys.empty()) {
+            auto c = changed_.cbegin();
+            keys.erase(std::remove_if(keys.begin(), keys.end(),
+                                      [&](const FacetKey& k) {
+                                          while (c != changed_.cend() && *c < k) ++c;
+                                          return c != changed_.cend() && *c == k;
+                                      }),
+                       keys.end());
+        }
+        const std::size_t n = keys.size();
+        for (const Entry& e : added) // sorted by key
+            if (in_class(e)) keys.push_back(e.key);
+        std::inplace_merge(keys.begin(), keys.begin() + std::ptrdiff_t(n), keys.end());
+    };
+    refresh(flagged_.overflow, [](const Entry& e) { return e.overflow; });
+    refresh(flagged_.multiple, [](const Entry& e) { return !e.overflow && e.crossings > 1; });
+    refresh(flagged_.grid_vertex, [](const Entry& e) { return !e.overflow && e.crossings == 1 && !e.all_on_surface; });
+    refresh(flagged_.far, [&](const Entry& e) {
+        return !e.overflow && e.crossings == 1 && e.record->distance > far_distance_;
+    });
 }
 
 void FacetCache::merge_pending() const

@@ -10,6 +10,7 @@
 #include "octree/sample_field.h"
 #include "octree/segment_walk.h"
 
+#include <cmath>
 #include <vector>
 
 namespace isodel::mesher {
@@ -54,6 +55,7 @@ public:
         pending_changed_.clear();
         pending_added_.clear();
         recent_.clear();
+        flagged_ = Flagged();
         scanned_ = false;
     }
 
@@ -87,6 +89,25 @@ public:
         merge_pending();
         return active_;
     }
+    /// The active facets the closed-ball checks look for (closed_ball.h), by class: keys in
+    /// sorted order, kept up to date by update() from the changed and recomputed facets, as the
+    /// restricted stars are. A round then finds its violations in O(changes) instead of
+    /// scanning every active facet (373 k on a 128^3 protein, in each of ~150 rounds).
+    struct Flagged {
+        std::vector<FacetKey> overflow; ///< Voronoi edge unbounded or out of its cell bound
+        std::vector<FacetKey> multiple; ///< Voronoi edge crossing Sigma more than once (CBP_VE)
+        std::vector<FacetKey> grid_vertex; ///< restricted, with a grid vertex
+        std::vector<FacetKey> far; ///< restricted, surface point farther than far_distance() from the circumcentre
+    };
+    const Flagged& flagged() const { return flagged_; }
+    /// The distance of Flagged::far (the eps criterion); set before the first update().
+    void set_far_distance(double d) { far_distance_ = d; }
+    double far_distance() const { return far_distance_; }
+    /// The active facet \p key (as in active()); \p key must be one.
+    Entry entry(const FacetKey& key) const;
+    /// The number of active facets.
+    std::size_t active_count() const { return map_.size(); }
+
     /// The active facets the last update() computed (new or changed since the update before),
     /// sorted by key: where the last insertions changed the restricted Voronoi diagram.
     const std::vector<Entry>& recent() const { return recent_; }
@@ -133,6 +154,9 @@ private:
     void merge_pending() const;
     std::vector<Entry> recent_;
     std::size_t computed_ = 0;
+    Flagged flagged_;
+    double far_distance_ = INFINITY;
+    void update_flagged(const std::vector<Entry>& added);
     // Restricted star of every vertex id (sorted by key), the vertices' positions, and the ids
     // whose star changed since take_touched_vertices() was last called.
     std::vector<std::vector<StarFacet>> stars_;

@@ -21,11 +21,16 @@ namespace {
 struct Summary {
     std::vector<std::tuple<FacetKey, int, bool>> active;
     std::vector<std::vector<FacetKey>> stars;
+    std::vector<FacetKey> overflow, multiple, grid_vertex, far;
 };
 
 Summary summarise(const FacetCache& cache)
 {
     Summary s;
+    s.overflow = cache.flagged().overflow;
+    s.multiple = cache.flagged().multiple;
+    s.grid_vertex = cache.flagged().grid_vertex;
+    s.far = cache.flagged().far;
     for (const auto& e : cache.active()) s.active.emplace_back(e.key, int(e.crossings), e.overflow);
     for (std::uint32_t id = 0; id < cache.vertex_id_bound(); ++id) {
         std::vector<FacetKey> keys;
@@ -60,6 +65,7 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
         Delaunay dt;
         std::uint32_t id = grid_and_edge_points(dt, rng, u);
         FacetCache cache;
+        cache.set_far_distance(0.3);
         cache.update(dt, field, 1000);
         std::size_t active = 0;
         for (int round = 0; round < 6; ++round) {
@@ -72,12 +78,18 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
             if (round % 2 == 0) active = cache.active().size();
         }
         FacetCache fresh;
+        fresh.set_far_distance(0.3);
         fresh.update(dt, field, 1000);
         const Summary a = summarise(cache), b = summarise(fresh);
         CHECK(active > 0);
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
+        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged).
+        CHECK(a.overflow == b.overflow);
+        CHECK(a.multiple == b.multiple);
+        CHECK(a.grid_vertex == b.grid_vertex);
+        CHECK(a.far == b.far);
     }
 }
 
@@ -92,6 +104,7 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after removals", 
         Delaunay dt;
         std::uint32_t id = grid_and_edge_points(dt, rng, u);
         FacetCache cache;
+        cache.set_far_distance(0.3);
         cache.update(dt, field, 1000);
         std::size_t removed = 0;
         for (int round = 0; round < 6; ++round) {
@@ -119,11 +132,17 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after removals", 
         }
         REQUIRE(dt.is_valid());
         FacetCache fresh;
+        fresh.set_far_distance(0.3);
         fresh.update(dt, field, 1000);
         const Summary a = summarise(cache), b = summarise(fresh);
         CHECK(removed > 60);
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
+        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged).
+        CHECK(a.overflow == b.overflow);
+        CHECK(a.multiple == b.multiple);
+        CHECK(a.grid_vertex == b.grid_vertex);
+        CHECK(a.far == b.far);
     }
 }
