@@ -3,10 +3,11 @@
 // exact predicates, so every combinatorial decision is exact; constructions such as
 // circumcentres are double precision). CGAL types stay inside src/.
 #include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <openvdb/math/Vec3.h>
+
+#include "mesher/cell_base.h"
 
 #include <array>
 #include <cstdint>
@@ -36,7 +37,7 @@ struct VertexInfo {
 };
 
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
-using Cb = CGAL::Delaunay_triangulation_cell_base_3<K>;
+using Cb = CellWithFacetMarks<K>; // CGAL's Delaunay cell and the facet cache's marks (cell_base.h)
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
 using Vertex_handle = Delaunay::Vertex_handle;

@@ -27,6 +27,14 @@ bool has_surface_vertex(const Facet& f)
     return vs[0]->info().on_surface() || vs[1]->info().on_surface() || vs[2]->info().on_surface();
 }
 
+/// Marks both cells of a facet whose record enters the table (cell_base.h).
+void mark(const Facet& f)
+{
+    f.first->mark_facet(f.second);
+    const Cell_handle n = f.first->neighbor(f.second);
+    n->mark_facet(n->index(f.first));
+}
+
 } // namespace
 
 FacetRecord compute_facet_record(const Delaunay& dt, const Facet& f,
@@ -85,11 +93,13 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
     dt.find_conflicts(p, loc, std::back_inserter(boundary), std::back_inserter(conflicts), std::back_inserter(internal));
     // The facets the insertion replaces: each one once (an internal facet is shared by two
     // conflict cells), and a boundary facet too, since its other cell is replaced.
-    // Only facets with an E/N vertex are ever recorded (update()), and none before the first
-    // scan: the others, most of them when G' is inserted far from Sigma, need no key and no lookup.
+    // Only facets marked in their cell (cell_base.h) may have a record: a recorded facet is
+    // marked on both its cells, and each facet here has a cell in the conflict region, so
+    // looking at that side is enough. The others, ~60 per point and nearly all of them, need
+    // no key and no lookup.
     for (const auto* facets : {&boundary, &internal})
         for (const Facet& f : *facets)
-            if (scanned_ && !dt.is_infinite(f) && has_surface_vertex(f)) {
+            if (f.first->facet_marked(f.second)) {
                 const FacetKey k = facet_key(f);
                 if (map_.erase(k)) changed_.push_back(k);
             }
@@ -171,6 +181,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
             // entry of it was erased by insert(), which listed it there.
             if (t.record.crossings == 0 && !t.record.overflow) continue;
             const Stored* st = map_.try_emplace(t.key, Stored{t.facet, t.record}).first;
+            mark(st->facet);
             const auto vs = facet_vertices(st->facet);
             const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
             added.push_back({st->facet, t.key, &st->record, st->record.crossings, st->record.overflow, on});
@@ -212,6 +223,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
                 computed_ += counted[t];
                 for (const Todo& x : kept[t]) {
                     const Stored* st = map_.try_emplace(x.key, Stored{x.facet, x.record}).first;
+                    mark(st->facet);
                     const auto vs = facet_vertices(st->facet);
                     const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
                     added.push_back({st->facet, x.key, &st->record, st->record.crossings, st->record.overflow, on});
