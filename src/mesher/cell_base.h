@@ -7,8 +7,9 @@
 // facets of those cells: without the marks that was a key computation and a hash lookup per
 // facet, ~60 per inserted point, nearly all of them for facets without a record. The marks are
 // a superset: set on both cells of a facet when its record enters the cache, and forgotten
-// only with the cell (a new cell starts unmarked). A record leaves the cache exactly when one
-// of its facet's two cells is destroyed, so a recorded facet is always marked where it is seen.
+// only with the cell (a new cell starts unmarked). While a record stays in the cache, both of
+// its facet's cells live (destroying either erases it), so a recorded facet is marked wherever
+// it is seen; records dropped otherwise (FacetCache::reset) only leave marks without records.
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 
 #include <cstdint>

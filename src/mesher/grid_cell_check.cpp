@@ -74,7 +74,8 @@ void check_all_cells(const Delaunay& dt, const octree::SampleField& field, const
         double d;
         Point p;
     };
-    // Runs of cells, so the handle list stays bounded on large volumes.
+    // Runs of cells, each folded into `best` before the next: the handle and hit lists stay
+    // bounded on large volumes (the choice in `best` does not depend on the order).
     constexpr std::size_t kCells = std::size_t(1) << 20;
     std::vector<Cell_handle> cells;
     cells.reserve(std::min<std::size_t>(kCells, dt.number_of_cells()));
@@ -105,14 +106,16 @@ void check_all_cells(const Delaunay& dt, const octree::SampleField& field, const
             }
         });
         cells.clear();
+        for (auto& list : hits) {
+            for (const Hit& h : list) best[h.slot].offer(h.d, h.p, pending[h.slot]);
+            list.clear();
+        }
     };
     for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
         cells.push_back(c);
         if (cells.size() == kCells) flush();
     }
     flush();
-    for (const auto& list : hits)
-        for (const Hit& h : list) best[h.slot].offer(h.d, h.p, pending[h.slot]);
 }
 
 } // namespace
@@ -121,6 +124,8 @@ std::vector<Candidate> grid_cell_violations(const Delaunay& dt, const octree::Sa
                                             std::vector<Vertex_handle>& pending, int max_cells)
 {
     std::vector<Best> best(pending.size());
+    // Cell by cell when the pending points are a quarter or more of all vertices: the first
+    // check, of all of G (60 % of E u G on the 128^3 protein), where nearly every cell has one.
     if (dt.dimension() == 3 && 4 * pending.size() >= dt.number_of_vertices()) {
         check_all_cells(dt, field, pending, max_cells, best);
     } else {

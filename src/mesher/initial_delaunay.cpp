@@ -10,7 +10,8 @@ namespace {
 using ParallelTds = CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Parallel_tag>;
 using ParallelDelaunay = CGAL::Delaunay_triangulation_3<K, ParallelTds>;
 
-// copy_tds's converters: a vertex keeps its point and info; cells carry nothing of their own.
+// copy_tds's converters: a vertex keeps its point and info; a cell starts afresh (no facet marks:
+// the facet cache has no record yet, cell_base.h).
 struct ConvertVertex {
     Tds::Vertex operator()(const ParallelTds::Vertex& src) const
     {

@@ -5,7 +5,7 @@
 #include "octree/segment_walk.h"
 
 #include <algorithm>
-#include <cassert>
+#include <stdexcept>
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -231,16 +231,14 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
             }
             cells.clear();
         };
+        // Only a 3D triangulation has Voronoi edges between cells: E u G always spans 3D (G is
+        // the 4 x 4 x 4 block of samples around every crossed cell).
         if (dt.dimension() == 3) {
             for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
                 cells.push_back(c);
                 if (cells.size() == kCells) flush();
             }
             flush();
-        } else {
-            // A flat or smaller triangulation (degenerate input): its few facets, serially.
-            for (auto it = dt.finite_facets_begin(); it != dt.finite_facets_end(); ++it)
-                if (has_surface_vertex(*it)) todo.push_back({*it, facet_key(*it), FacetRecord()});
         }
         scanned_ = true;
     } else {
@@ -326,7 +324,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
 FacetCache::Entry FacetCache::entry(const FacetKey& key) const
 {
     const Stored* st = map_.find(key);
-    assert(st);
+    if (!st) throw std::logic_error("FacetCache::entry: no active facet with this key (read flagged() right after update())");
     const auto vs = facet_vertices(st->facet);
     const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
     return {st->facet, key, &st->record, st->record.crossings, st->record.overflow, on};

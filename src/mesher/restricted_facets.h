@@ -11,6 +11,7 @@
 #include "octree/segment_walk.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace isodel::mesher {
@@ -77,8 +78,9 @@ public:
         Facet facet;
         FacetKey key;
         const FacetRecord* record;
-        // Copies of the record's flags, so that the per-round scans of every active facet read
-        // this array sequentially instead of chasing `record` into the hash map.
+        // Copies of the record's flags, so that scans of every active facet (the Hausdorff and
+        // extraction steps, the flagged classes' self-check) read this array sequentially
+        // instead of chasing `record` into the hash map.
         std::uint16_t crossings;
         bool overflow;
         bool all_on_surface; ///< every vertex is an E/N point (kinds never change)
@@ -92,7 +94,8 @@ public:
     /// The active facets the closed-ball checks look for (closed_ball.h), by class: keys in
     /// sorted order, kept up to date by update() from the changed and recomputed facets, as the
     /// restricted stars are. A round then finds its violations in O(changes) instead of
-    /// scanning every active facet (373 k on a 128^3 protein, in each of ~150 rounds).
+    /// scanning every active facet (373 k on a 128^3 protein, in each of ~150 rounds). Valid
+    /// right after update(): an insert() or remove() since may have erased keys they name.
     struct Flagged {
         std::vector<FacetKey> overflow; ///< Voronoi edge unbounded or out of its cell bound
         std::vector<FacetKey> multiple; ///< Voronoi edge crossing Sigma more than once (CBP_VE)
@@ -100,10 +103,15 @@ public:
         std::vector<FacetKey> far; ///< restricted, surface point farther than far_distance() from the circumcentre
     };
     const Flagged& flagged() const { return flagged_; }
-    /// The distance of Flagged::far (the eps criterion); set before the first update().
-    void set_far_distance(double d) { far_distance_ = d; }
+    /// The distance of Flagged::far (the eps criterion): infinite (no facet is far) until set,
+    /// which must happen before the first update().
+    void set_far_distance(double d)
+    {
+        if (scanned_) throw std::logic_error("FacetCache::set_far_distance after the first update()");
+        far_distance_ = d;
+    }
     double far_distance() const { return far_distance_; }
-    /// The active facet \p key (as in active()); \p key must be one.
+    /// The active facet \p key (as in active()); throws std::logic_error if it is none.
     Entry entry(const FacetKey& key) const;
     /// The number of active facets.
     std::size_t active_count() const { return map_.size(); }

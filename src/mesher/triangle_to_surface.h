@@ -30,9 +30,11 @@ struct LastCell {
 };
 
 /// Newton projection of a world point onto Sigma along the world gradient of phi. Returns false
-/// when it does not converge (flat phi): the caller then has no bound from it.
+/// when it does not converge (flat phi): the caller then has no bound from it. On success
+/// \p slack is the last step's length (world units): Sigma is within it of \p out, so
+/// d(w0, Sigma) <= |out - w0| + slack is a bound.
 inline bool project(const octree::SampleField::Reader& reader, LastCell& last, const openvdb::math::Mat3d& to_index,
-                    double step_cap, const Vec3d& w0, Vec3d& out)
+                    double step_cap, const Vec3d& w0, Vec3d& out, double& slack)
 {
     const auto& field = reader.field();
     Vec3d x = field.world_to_index(w0);
@@ -53,11 +55,14 @@ inline bool project(const octree::SampleField::Reader& reader, LastCell& last, c
         const double len = dw.length();
         if (len > step_cap) dw *= step_cap / len;
         x += to_index * dw;
-        // Converged once a step is this short: Newton's error after it is of the order of the
-        // curvature times its square, below 1e-9 voxel even at a saddle. (1e-10 cost a third
-        // iteration per projection, of 21 M projections on a 128^3 protein at eps 0.1 voxel.)
+        // Converged once a step is this short. Within one cell Newton's error after it is of
+        // the order of the curvature times its square; a step across a cell face (F is only C0
+        // there) may leave an error as long as the step, so the step's length is the caller's
+        // slack. (1e-10 instead of 1e-5 cost a third iteration per projection, of 21 M on a
+        // 128^3 protein at eps 0.1 voxel; the slack is at most 5e-6 voxel.)
         if (len < 1e-5 * step_cap) {
             out = field.index_to_world(x);
+            slack = len;
             return true;
         }
     }
@@ -143,6 +148,7 @@ private:
         std::uint32_t stamp = 0;
         Vec3d s;                ///< the sample
         std::optional<Vec3d> q; ///< its Newton projection, when it converged
+        double slack = 0;       ///< Sigma is within this of q (project())
     };
 
     void tighten(Corner& x)
@@ -157,11 +163,11 @@ private:
             m.s = x.s;
             Vec3d q;
             m.q.reset();
-            if (project(reader_, last_cell_, to_index_, step_cap_, x.start, q)) m.q = q;
+            if (project(reader_, last_cell_, to_index_, step_cap_, x.start, q, m.slack)) m.q = q;
         }
         if (m.q) {
             x.q = m.q;
-            x.d = std::min(x.d, (*m.q - x.s).length());
+            x.d = std::min(x.d, (*m.q - x.s).length() + m.slack);
         }
     }
 

@@ -85,11 +85,15 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
-        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged).
+        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged),
+        // each of them present (random points make all three but the overflow class).
         CHECK(a.overflow == b.overflow);
         CHECK(a.multiple == b.multiple);
         CHECK(a.grid_vertex == b.grid_vertex);
         CHECK(a.far == b.far);
+        CHECK(!b.multiple.empty());
+        CHECK(!b.grid_vertex.empty());
+        CHECK(!b.far.empty());
     }
 }
 
@@ -139,10 +143,14 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after removals", 
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
-        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged).
+        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged),
+        // each of them present (random points make all three but the overflow class).
         CHECK(a.overflow == b.overflow);
         CHECK(a.multiple == b.multiple);
         CHECK(a.grid_vertex == b.grid_vertex);
         CHECK(a.far == b.far);
+        CHECK(!b.multiple.empty());
+        CHECK(!b.grid_vertex.empty());
+        CHECK(!b.far.empty());
     }
 }
