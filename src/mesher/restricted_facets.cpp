@@ -180,11 +180,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
             // No entry in changed_ for a recomputed key: it is not in the table, so any old
             // entry of it was erased by insert(), which listed it there.
             if (t.record.crossings == 0 && !t.record.overflow) continue;
-            const Stored* st = map_.try_emplace(t.key, Stored{t.facet, t.record}).first;
-            mark(st->facet);
-            const auto vs = facet_vertices(st->facet);
-            const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
-            added.push_back({st->facet, t.key, &st->record, st->record.crossings, st->record.overflow, on});
+            added.push_back(enter(t.facet, t.key, t.record));
         }
         todo.clear();
     };
@@ -221,13 +217,7 @@ void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, in
             });
             for (std::size_t t = 0; t < tasks; ++t) {
                 computed_ += counted[t];
-                for (const Todo& x : kept[t]) {
-                    const Stored* st = map_.try_emplace(x.key, Stored{x.facet, x.record}).first;
-                    mark(st->facet);
-                    const auto vs = facet_vertices(st->facet);
-                    const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
-                    added.push_back({st->facet, x.key, &st->record, st->record.crossings, st->record.overflow, on});
-                }
+                for (const Todo& x : kept[t]) added.push_back(enter(x.facet, x.key, x.record));
             }
             cells.clear();
         };
@@ -325,9 +315,21 @@ FacetCache::Entry FacetCache::entry(const FacetKey& key) const
 {
     const Stored* st = map_.find(key);
     if (!st) throw std::logic_error("FacetCache::entry: no active facet with this key (read flagged() right after update())");
-    const auto vs = facet_vertices(st->facet);
+    return entry_of(*st, key);
+}
+
+FacetCache::Entry FacetCache::entry_of(const Stored& st, const FacetKey& key)
+{
+    const auto vs = facet_vertices(st.facet);
     const bool on = vs[0]->info().on_surface() && vs[1]->info().on_surface() && vs[2]->info().on_surface();
-    return {st->facet, key, &st->record, st->record.crossings, st->record.overflow, on};
+    return {st.facet, key, &st.record, st.record.crossings, st.record.overflow, on};
+}
+
+FacetCache::Entry FacetCache::enter(const Facet& f, const FacetKey& key, const FacetRecord& record)
+{
+    const Stored* st = map_.try_emplace(key, Stored{f, record}).first;
+    mark(st->facet);
+    return entry_of(*st, key);
 }
 
 void FacetCache::update_flagged(const std::vector<Entry>& added)

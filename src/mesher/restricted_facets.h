@@ -165,6 +165,11 @@ private:
     Flagged flagged_;
     double far_distance_ = INFINITY;
     void update_flagged(const std::vector<Entry>& added);
+    /// The entry of a stored record (its flags copied, and whether every vertex is on Sigma).
+    static Entry entry_of(const Stored& st, const FacetKey& key);
+    /// Stores the record of an active facet, marks the facet on both its cells (cell_base.h)
+    /// and returns its entry.
+    Entry enter(const Facet& f, const FacetKey& key, const FacetRecord& record);
     // Restricted star of every vertex id (sorted by key), the vertices' positions, and the ids
     // whose star changed since take_touched_vertices() was last called.
     std::vector<std::vector<StarFacet>> stars_;

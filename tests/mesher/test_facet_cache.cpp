@@ -41,6 +41,19 @@ Summary summarise(const FacetCache& cache)
     return s;
 }
 
+/// The classes the closed-ball checks read, kept incrementally (FacetCache::flagged), equal in
+/// \p a and a fresh scan \p b, each of them present (random points make all but the overflow class).
+void check_same_flagged(const Summary& a, const Summary& b)
+{
+    CHECK(a.overflow == b.overflow);
+    CHECK(a.multiple == b.multiple);
+    CHECK(a.grid_vertex == b.grid_vertex);
+    CHECK(a.far == b.far);
+    CHECK(!b.multiple.empty());
+    CHECK(!b.grid_vertex.empty());
+    CHECK(!b.far.empty());
+}
+
 /// The 7^3 grid points and 150 random E points; returns the next free id.
 std::uint32_t grid_and_edge_points(Delaunay& dt, std::mt19937& rng, std::uniform_real_distribution<double>& u)
 {
@@ -85,15 +98,7 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after insertions"
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
-        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged),
-        // each of them present (random points make all three but the overflow class).
-        CHECK(a.overflow == b.overflow);
-        CHECK(a.multiple == b.multiple);
-        CHECK(a.grid_vertex == b.grid_vertex);
-        CHECK(a.far == b.far);
-        CHECK(!b.multiple.empty());
-        CHECK(!b.grid_vertex.empty());
-        CHECK(!b.far.empty());
+        check_same_flagged(a, b);
     }
 }
 
@@ -143,14 +148,6 @@ TEST_CASE("facet cache: incremental records equal a fresh scan after removals", 
         CHECK(a.active.size() == b.active.size());
         CHECK(a.active == b.active);
         CHECK(a.stars == b.stars);
-        // The classes the closed-ball checks read, kept incrementally (FacetCache::flagged),
-        // each of them present (random points make all three but the overflow class).
-        CHECK(a.overflow == b.overflow);
-        CHECK(a.multiple == b.multiple);
-        CHECK(a.grid_vertex == b.grid_vertex);
-        CHECK(a.far == b.far);
-        CHECK(!b.multiple.empty());
-        CHECK(!b.grid_vertex.empty());
-        CHECK(!b.far.empty());
+        check_same_flagged(a, b);
     }
 }
