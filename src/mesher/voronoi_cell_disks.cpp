@@ -88,14 +88,17 @@ private:
         }
         Vec3d X[8];
         double F[8];
-        int inside = 0, along = 0;
+        int inside = 0;
         for (int k = 0; k < 8; ++k) {
             X[k] = Vec3d(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
             F[k] = f(X[k][0], X[k][1], X[k][2]);
             inside += F[k] >= 0; // phi >= 0 is inside (segment_walk.h's convention)
-            along += d_.dot(f.gradient(X[k][0], X[k][1], X[k][2])) > 0;
         }
-        if (inside == 0 || inside == 8 || along == 8) return;
+        if (inside == 0 || inside == 8) return;
+        // The gradients only where Sigma may pass, and only until one corner fails.
+        int along = 0;
+        while (along < 8 && d_.dot(f.gradient(X[along][0], X[along][1], X[along][2])) > 0) ++along;
+        if (along == 8) return;
         if (cell_.misses_box(cell.asVec3d() + lo, cell.asVec3d() + hi)) return;
         if (depth == kMaxDepth) {
             settled_ = false;
