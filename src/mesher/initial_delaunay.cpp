@@ -2,29 +2,80 @@
 
 #include <CGAL/Spatial_lock_grid_3.h>
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
 
 namespace isodel::mesher {
 namespace {
 
-using ParallelTds = CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Parallel_tag>;
+/// A vertex or cell base of the parallel build's triangulation plus its position in the copy
+/// (copy_into), where CGAL's copy_tds looks every handle up in a hash map.
+template <class Base>
+class WithCopyIndex : public Base {
+public:
+    using Base::Base;
+    template <class TDS2>
+    struct Rebind_TDS {
+        using Other = WithCopyIndex<typename Base::template Rebind_TDS<TDS2>::Other>;
+    };
+    std::uint32_t copy_index = 0;
+};
+
+using ParallelTds = CGAL::Triangulation_data_structure_3<WithCopyIndex<Vb>, WithCopyIndex<Cb>, CGAL::Parallel_tag>;
 using ParallelDelaunay = CGAL::Delaunay_triangulation_3<K, ParallelTds>;
 
-// copy_tds's converters: a vertex keeps its point and info; a cell starts afresh (no facet marks:
-// the facet cache has no record yet, cell_base.h).
-struct ConvertVertex {
-    Tds::Vertex operator()(const ParallelTds::Vertex& src) const
-    {
-        Tds::Vertex v(src.point());
-        v.info() = src.info();
-        return v;
+/// Makes \p dst a copy of \p src's triangulation, as CGAL's copy_tds does (vertices and cells
+/// created in \p src's order, so \p dst stores them in the same order), but with the handle
+/// maps as arrays indexed by copy_index and the pointers set in parallel. A vertex keeps its
+/// point and info; a cell starts afresh (no facet marks: the facet cache has no record yet,
+/// cell_base.h). On a 128^3 protein (2.5 M cells) copy_tds took 0.55-0.6 s, serially.
+/// Returns the copy of \p src's infinite vertex.
+Vertex_handle copy_into(ParallelDelaunay& src, Delaunay& dst)
+{
+    ParallelTds& s = src.tds();
+    Tds& d = dst.tds();
+    d.clear();
+    d.set_dimension(s.dimension());
+    const int n_vertices = std::max(1, s.dimension() + 1); // vertex pointers per cell
+    const int n_neighbors = std::max(0, s.dimension() + 1);
+
+    std::vector<ParallelTds::Vertex_handle> src_vertices;
+    std::vector<Vertex_handle> vertices;
+    src_vertices.reserve(s.number_of_vertices());
+    vertices.reserve(s.number_of_vertices());
+    for (auto v = s.vertices_begin(); v != s.vertices_end(); ++v) {
+        v->copy_index = std::uint32_t(vertices.size());
+        Tds::Vertex copy(v->point());
+        copy.info() = v->info();
+        src_vertices.push_back(v);
+        vertices.push_back(d.create_vertex(copy));
     }
-    void operator()(const ParallelTds::Vertex&, Tds::Vertex&) const {}
-};
-struct ConvertCell {
-    Tds::Cell operator()(const ParallelTds::Cell&) const { return Tds::Cell(); }
-    void operator()(const ParallelTds::Cell&, Tds::Cell&) const {}
-};
+    std::vector<ParallelTds::Cell_handle> src_cells;
+    std::vector<Cell_handle> cells;
+    src_cells.reserve(s.number_of_cells());
+    cells.reserve(s.number_of_cells());
+    for (auto c = s.cells().begin(); c != s.cells_end(); ++c) {
+        c->copy_index = std::uint32_t(cells.size());
+        src_cells.push_back(c);
+        cells.push_back(d.create_cell());
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 1 << 14), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const ParallelTds::Cell_handle c = src_cells[i];
+            for (int j = 0; j < n_vertices; ++j) cells[i]->set_vertex(j, vertices[c->vertex(j)->copy_index]);
+            for (int j = 0; j < n_neighbors; ++j) cells[i]->set_neighbor(j, cells[c->neighbor(j)->copy_index]);
+        }
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices.size(), 1 << 14), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) vertices[i]->set_cell(cells[src_vertices[i]->cell()->copy_index]);
+    });
+    return vertices[src.infinite_vertex()->copy_index];
+}
 
 // Below this many points (a tenth of a second of sequential insertion) the lock grid and the copy
 // are not worth setting up. Not tuned: the meshes are the same either way.
@@ -43,8 +94,8 @@ void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, Ver
     CGAL::Bbox_3 box = points.front().first.bbox();
     for (const auto& p : points) box += p.first.bbox();
     ParallelDelaunay::Lock_data_structure locks(box, 50); // 50^3 lock cells, as CGAL's examples
-    const ParallelDelaunay pdt(points.begin(), points.end(), &locks);
-    dt.set_infinite_vertex(dt.tds().copy_tds(pdt.tds(), pdt.infinite_vertex(), ConvertVertex(), ConvertCell()));
+    ParallelDelaunay pdt(points.begin(), points.end(), &locks);
+    dt.set_infinite_vertex(copy_into(pdt, dt));
 }
 
 } // namespace isodel::mesher
