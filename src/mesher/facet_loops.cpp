@@ -147,13 +147,18 @@ void grid_face_extrema(const octree::SampleField::Reader& reader, const Polygon&
                     ts.push_back((g - P0[a]) / D[a]);
             }
             std::sort(ts.begin(), ts.end());
+            // phi at a breakpoint ends one interval and starts the next: evaluated once.
+            std::size_t known = ts.size();
+            double f_known = 0;
             for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
                 const double half = 0.5 * (ts[i + 1] - ts[i]);
                 if (!(half > 1e-12)) continue;
                 const double tm = ts[i] + half;
                 const Vec3d pm = P0 + tm * D;
-                const double f0 = octree::phi_at(reader, P0 + ts[i] * D), fm = octree::phi_at(reader, pm),
-                             f1 = octree::phi_at(reader, P0 + ts[i + 1] * D);
+                const double f0 = known == i ? f_known : octree::phi_at(reader, P0 + ts[i] * D),
+                             fm = octree::phi_at(reader, pm), f1 = octree::phi_at(reader, P0 + ts[i + 1] * D);
+                known = i + 1;
+                f_known = f1;
                 const double alpha = (f0 - 2 * fm + f1) / (2 * half * half), beta = (f1 - f0) / (2 * half);
                 if (alpha == 0) continue;
                 const double x = -beta / (2 * alpha);
@@ -188,8 +193,14 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
         return k;
     };
     std::size_t first = 0;
-    for (std::size_t i = 1; i < ring.size(); ++i)
-        if (key(ring[i]) < key(ring[first])) first = i;
+    auto first_key = key(ring[0]);
+    for (std::size_t i = 1; i < ring.size(); ++i) {
+        const auto k = key(ring[i]);
+        if (k < first_key) {
+            first = i;
+            first_key = k;
+        }
+    }
     std::rotate(ring.begin(), ring.begin() + std::ptrdiff_t(first), ring.end());
     Small<Vec3d> P;
     for (const auto& c : ring) {
