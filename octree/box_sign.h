@@ -16,6 +16,24 @@
 
 namespace isodel::octree {
 
+/// The sign F' keeps on the local box [\p lo, \p hi] of one cell, by the margin above: +1 when
+/// every corner value exceeds it, -1 when every one is below its negative, 0 when neither (the
+/// box may still keep a sign). \p f is the cell's F', \p corner its samples (for the margin).
+inline int sign_on_cell_box(const CellFunction& f, const double corner[8], const Vec3d& lo, const Vec3d& hi)
+{
+    double scale = 0;
+    for (int k = 0; k < 8; ++k) scale = std::max(scale, std::abs(corner[k]));
+    const double margin = 1e-9 * scale;
+    int sign = 0;
+    for (int k = 0; k < 8; ++k) {
+        const double phi = f(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
+        const int s = phi > margin ? 1 : phi < -margin ? -1 : 0;
+        if (s == 0 || (sign != 0 && s != sign)) return 0;
+        sign = s;
+    }
+    return sign;
+}
+
 /// True when phi_at(p) >= 0 (\p inside) or < 0 (not \p inside) for every p in [lo, hi], with
 /// the margin above. False says nothing: the box may still keep the sign.
 inline bool one_sign_on_box(const SampleField::Reader& reader, const Vec3d& lo, const Vec3d& hi, bool inside)
@@ -25,14 +43,8 @@ inline bool one_sign_on_box(const SampleField::Reader& reader, const Vec3d& lo, 
         if (!certified) return;
         double corner[8];
         reader.cell_corners(c, corner);
-        double scale = 0;
-        for (const double v : corner) scale = std::max(scale, std::abs(v));
-        const double margin = 1e-9 * scale;
         const CellFunction f(Trilinear::from_corners(corner), reader.field().face_slabs());
-        for (int k = 0; k < 8 && certified; ++k) {
-            const double phi = f(k & 1 ? b[0] : a[0], k & 2 ? b[1] : a[1], k & 4 ? b[2] : a[2]);
-            certified = inside ? phi > margin : phi < -margin;
-        }
+        certified = sign_on_cell_box(f, corner, a, b) == (inside ? 1 : -1);
     });
     return certified;
 }

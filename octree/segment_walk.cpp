@@ -1,5 +1,6 @@
 #include "octree/segment_walk.h"
 
+#include "octree/box_sign.h"
 #include "octree/cell_function.h"
 
 #include "octree/cell_interpolant.h"
@@ -60,26 +61,6 @@ double bisect(const Cubic& q, double lo, double hi, bool lo_inside)
     return 0.5 * (lo + hi);
 }
 
-/// Whether F' has v0's sign (\p in) on the whole bounding box of the segment's part [p, q] in
-/// this cell, by the margin of box_sign.h (1e-9 of the cell's largest sample, far above the
-/// rounding of any evaluation here): then no piece of the part holds a crossing, and every value
-/// the pieces would evaluate has that sign. F' = f o phi with phi monotone per axis, so its
-/// extremes on the box are at the box's corners. Cheaper than the pieces it skips (each a
-/// trilinear re-expanded per slab box, a cubic and its critical points): on the Voronoi edges of
-/// a 128^3 protein's first facet scan most cells a segment passes are certified.
-bool keeps_sign(const CellFunction& cf, const double corner[8], const Vec3d& p, const Vec3d& q, bool in)
-{
-    double scale = 0;
-    for (int k = 0; k < 8; ++k) scale = std::max(scale, std::abs(corner[k]));
-    const double margin = 1e-9 * scale;
-    const Vec3d lo = openvdb::math::minComponent(p, q), hi = openvdb::math::maxComponent(p, q);
-    for (int k = 0; k < 8; ++k) {
-        const double phi = cf(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
-        if (in ? !(phi > margin) : !(phi < -margin)) return false;
-    }
-    return true;
-}
-
 } // namespace
 
 double phi_at(const SampleField::Reader& reader, const Vec3d& p)
@@ -137,10 +118,17 @@ SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3
             out.inside_at_start = inside(v0);
             have_v0 = true;
         }
-        if (t1 > t0 && keeps_sign(cf, corner, a_local + t0 * d, a_local + t1 * d, inside(v0))) {
-            // No crossing in this cell, and v0 keeps its sign to the exit: only its sign is
-            // read from here on (each piece's sign changes, inside_at_end).
-        } else if (t1 > t0) {
+        // Where F' has v0's sign on the whole bounding box of the segment's part in this cell,
+        // by box_sign.h's margin (far above the rounding of any evaluation here), no piece of
+        // the part holds a crossing and every value the pieces would give has that sign: skip
+        // them (8 evaluations instead of a trilinear re-expanded per slab box, a cubic and its
+        // critical points per piece). v0 keeps its sign to the exit, and only its sign is read
+        // from here on.
+        const Vec3d p_in = a_local + t0 * d, p_out = a_local + t1 * d;
+        const bool keeps_sign = t1 > t0 && sign_on_cell_box(cf, corner, openvdb::math::minComponent(p_in, p_out),
+                                                            openvdb::math::maxComponent(p_in, p_out)) ==
+                                                (inside(v0) ? 1 : -1);
+        if (t1 > t0 && !keeps_sign) {
             // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h): split
             // [t0, t1] where the segment crosses their planes, then per piece as one cubic.
             double cuts[8];

@@ -6,6 +6,7 @@
 #include "mesher/circumcenter.h"
 #include "mesher/vertex_star.h"
 #include "octree/box_cells.h"
+#include "octree/box_sign.h"
 #include "octree/cell_interpolant.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -67,9 +68,16 @@ public:
         octree::for_each_cell_part(lo, hi, [&](const Coord& c, const Vec3d& a, const Vec3d& b) {
             if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) return;
             // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
-            const octree::CellFunction cf = octree::cell_function(reader_, c);
+            double corner[8];
+            reader_.cell_corners(c, corner);
+            const octree::CellFunction cf(octree::Trilinear::from_corners(corner), field_.face_slabs());
+            // Where F' keeps one sign on the whole part (box_sign.h's margin), every box of it
+            // settles on its corner signs: it is only counted, not re-expanded and evaluated.
+            const bool one_sign = octree::sign_on_cell_box(cf, corner, a, b) != 0;
             octree::for_each_piece(cf.slabs(), a, b, [&](int ix, int iy, int iz, const Vec3d& pa, const Vec3d& pb) {
-                if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2]) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
+                if (!(pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2])) return;
+                if (!one_sign) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
+                else if (++boxes_ > kMaxBoxes) settled_ = false;
             });
         });
     }
