@@ -327,7 +327,9 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     // an edge is seen from every cell around it, and the raw lists of all the E/N vertices of a
     // 250 x 212 x 289 protein would be gigabytes.
     constexpr std::size_t kChunk = std::size_t(1) << 15;
-    const auto by_edge = [](const EdgeJob& x, const EdgeJob& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); };
+    const auto by_edge_then_order = [](const EdgeJob& x, const EdgeJob& y) {
+        return std::tie(x.a, x.b, x.order) < std::tie(y.a, y.b, y.order);
+    };
     const auto same_edge = [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; };
     std::vector<EdgeJob> jobs;
     std::vector<std::vector<EdgeJob>> per_vertex;
@@ -337,6 +339,7 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
         for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
             const Vertex_handle v = from[k];
             auto& out = per_vertex[k - begin];
+            out.reserve((first_ ? 3 : 6) * cells.size());
             for (const Cell_handle& c : cells)
                 for (int i = 0; i < 4; ++i)
                     for (int j = i + 1; j < 4; ++j) {
@@ -347,9 +350,12 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
                         const auto ia = va->info().id, ib = vb->info().id;
                         if (first_ && va->info().on_surface() && vb->info().on_surface() && v->info().id != std::min(ia, ib))
                             continue; // found from its other end
-                        out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), 0});
+                        // order: when it was found, so the first found of each edge sorts first
+                        // (a stable sort by edge, without stable_sort's buffer per vertex).
+                        out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib),
+                                       std::uint32_t(out.size())});
                     }
-            std::stable_sort(out.begin(), out.end(), by_edge); // the first found of each edge stays first
+            std::sort(out.begin(), out.end(), by_edge_then_order);
             out.erase(std::unique(out.begin(), out.end(), same_edge), out.end());
         });
         for (auto& list : per_vertex) {
@@ -372,9 +378,7 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     flagged_.clear();
     // One job per edge (an edge is seen from several cells), in id order; the first found
     // represents it.
-    tbb::parallel_sort(jobs.begin(), jobs.end(), [](const EdgeJob& x, const EdgeJob& y) {
-        return std::tie(x.a, x.b, x.order) < std::tie(y.a, y.b, y.order);
-    });
+    tbb::parallel_sort(jobs.begin(), jobs.end(), by_edge_then_order);
     jobs.erase(std::unique(jobs.begin(), jobs.end(), same_edge), jobs.end());
 
     std::vector<std::optional<Candidate>> found(jobs.size());
