@@ -19,12 +19,14 @@ namespace isodel::octree {
 /// The sign F' keeps on the local box [\p lo, \p hi] of one cell, by the margin above: +1 when
 /// every corner value exceeds it, -1 when every one is below its negative, 0 when neither (the
 /// box may still keep a sign). \p f is the cell's F', \p corner its samples (for the margin).
-inline int sign_on_cell_box(const CellFunction& f, const double corner[8], const Vec3d& lo, const Vec3d& hi)
+/// With \p want +1 or -1 only that sign is asked for: 0 as soon as a corner lacks it.
+inline int sign_on_cell_box(const CellFunction& f, const double corner[8], const Vec3d& lo, const Vec3d& hi,
+                            int want = 0)
 {
     double scale = 0;
     for (int k = 0; k < 8; ++k) scale = std::max(scale, std::abs(corner[k]));
     const double margin = 1e-9 * scale;
-    int sign = 0;
+    int sign = want;
     for (int k = 0; k < 8; ++k) {
         const double phi = f(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
         const int s = phi > margin ? 1 : phi < -margin ? -1 : 0;
@@ -44,7 +46,7 @@ inline bool one_sign_on_box(const SampleField::Reader& reader, const Vec3d& lo, 
         double corner[8];
         reader.cell_corners(c, corner);
         const CellFunction f(Trilinear::from_corners(corner), reader.field().face_slabs());
-        certified = sign_on_cell_box(f, corner, a, b) == (inside ? 1 : -1);
+        certified = sign_on_cell_box(f, corner, a, b, inside ? 1 : -1) != 0;
     });
     return certified;
 }

@@ -8,6 +8,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace isodel::mesher {
@@ -43,6 +46,9 @@ Vertex_handle copy_into(ParallelDelaunay& src, Delaunay& dst)
     d.set_dimension(s.dimension());
     const int n_vertices = std::max(1, s.dimension() + 1); // vertex pointers per cell
     const int n_neighbors = std::max(0, s.dimension() + 1);
+    if (s.number_of_cells() > std::numeric_limits<std::uint32_t>::max())
+        throw std::length_error("initial Delaunay: " + std::to_string(s.number_of_cells()) +
+                                " cells, more than the copy's 32-bit indices hold");
 
     std::vector<ParallelTds::Vertex_handle> src_vertices;
     std::vector<Vertex_handle> vertices;

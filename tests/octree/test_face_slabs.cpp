@@ -94,6 +94,7 @@ TEST_CASE("face slabs: the segment walk finds every sign change of F' (dense sam
     for (const bool smooth : {false, true})
     for (const double h : {0.0, 0.01, 0.1}) {
         auto grid = testing::random_samples(6, 5, smooth);
+        INFO("h = " << h << ", smooth " << smooth);
         SampleField field(grid, 0.0, isodel::Inside::Above);
         field.set_face_slabs(FaceSlabs{h});
         const SampleField::Reader reader(field);
@@ -128,7 +129,6 @@ TEST_CASE("face slabs: the segment walk finds every sign change of F' (dense sam
             ++compared;
             with_roots += !sc.t.empty();
         }
-        INFO("h = " << h << ", smooth " << smooth);
         CHECK(compared == 300);
         CHECK(with_roots > (smooth ? 50 : 100));
     }
