@@ -44,8 +44,7 @@ inline bool one_sign_on_box(const SampleField::Reader& reader, const Vec3d& lo, 
     for_each_cell_part(lo, hi, [&](const Coord& c, const Vec3d& a, const Vec3d& b) {
         if (!certified) return;
         double corner[8];
-        reader.cell_corners(c, corner);
-        const CellFunction f(Trilinear::from_corners(corner), reader.field().face_slabs());
+        const CellFunction f = cell_function(reader, c, corner);
         certified = sign_on_cell_box(f, corner, a, b, inside ? 1 : -1) != 0;
     });
     return certified;

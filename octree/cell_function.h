@@ -66,12 +66,19 @@ void for_each_piece(const FaceSlabs& s, const openvdb::math::Vec3d& a, const ope
             }
 }
 
+/// F' on the mesh cell with lowest corner \p c; \p corner receives the cell's samples (the
+/// scale of box_sign.h's margin).
+inline CellFunction cell_function(const SampleField::Reader& reader, const Coord& c, double corner[8])
+{
+    reader.cell_corners(c, corner);
+    return CellFunction(Trilinear::from_corners(corner), reader.field().face_slabs());
+}
+
 /// F' on the mesh cell with lowest corner \p c.
 inline CellFunction cell_function(const SampleField::Reader& reader, const Coord& c)
 {
     double corner[8];
-    reader.cell_corners(c, corner);
-    return CellFunction(Trilinear::from_corners(corner), reader.field().face_slabs());
+    return cell_function(reader, c, corner);
 }
 
 } // namespace isodel::octree

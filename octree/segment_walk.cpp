@@ -109,8 +109,7 @@ SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3
         const double t1 = is_last ? 1.0 : std::min(1.0, t_next[axis]);
 
         double corner[8];
-        reader.cell_corners(cell, corner);
-        const CellFunction cf(Trilinear::from_corners(corner), reader.field().face_slabs());
+        const CellFunction cf = cell_function(reader, cell, corner);
         const FaceSlabs& slabs = cf.slabs();
         const Vec3d a_local = a - Vec3d(cell[0], cell[1], cell[2]);
         if (!have_v0) {

@@ -69,8 +69,7 @@ public:
             if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) return;
             // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
             double corner[8];
-            reader_.cell_corners(c, corner);
-            const octree::CellFunction cf(octree::Trilinear::from_corners(corner), field_.face_slabs());
+            const octree::CellFunction cf = octree::cell_function(reader_, c, corner);
             // Where F' keeps one sign on the whole part (box_sign.h's margin), every box of it
             // settles on its corner signs: it is only counted, not re-expanded and evaluated.
             const bool one_sign = octree::sign_on_cell_box(cf, corner, a, b) != 0;
