@@ -18,7 +18,8 @@
 //    there can stand out of M between its vertices. Once every facet passes the two checks above,
 //    the crease curves (Sigma on the faces of the crossed cells, where F is bilinear) are sampled
 //    every eps/2 along lines of the face (F is linear on them: exact roots) and each sample
-//    farther than the threshold from M (AABB tree of M's triangles) is inserted. The mesher
+//    farther than the threshold from M is inserted (hausdorff_creases.cpp: the triangles near
+//    the sample's cell settle most samples, an AABB tree measures the far ones). The mesher
 //    meshes Sigma' (octree/face_slabs.h), whose creases are these curves mapped to the slab
 //    boundaries h inside each cell; the wall between two copies is 2h long.
 // The threshold is 0.7 eps, leaving the sampling spacing's share of the margin. A facet's
@@ -65,6 +66,7 @@ private:
     enum class CreaseState : char { Unknown, NoCrease, Passed };
     std::vector<CreaseState> crease_state_;
     std::vector<std::vector<FacetKey>> crease_witness_;
+    std::vector<FacetKey> crease_m_; // M's facets at the last crease check, sorted
     CandidateFilter keep_;
 };
 
