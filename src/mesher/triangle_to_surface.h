@@ -125,7 +125,8 @@ public:
         }
         Corner A{a, off[0], true, {}, kGrid, 0, a}, B{b, off[1], true, {}, 0, kGrid, b},
             C{c, off[2], true, {}, 0, 0, c};
-        return passes(A, B, C, 0);
+        const double L = std::max({(b - a).length(), (c - b).length(), (a - c).length()});
+        return passes(A, B, C, 0, L, geometry::triangle_corner_reach(a, b, c));
     }
 
 private:
@@ -188,10 +189,11 @@ private:
         return m;
     }
 
-    bool passes(Corner& A, Corner& B, Corner& C, int depth)
+    /// \p L, \p reach: the longest edge and the corner reach of ABC. The four halves of a
+    /// triangle are similar to it with ratio 1/2, so a sub-triangle's are its parent's halved
+    /// (exactly, in floating point) instead of measured again from the rounded midpoints.
+    bool passes(Corner& A, Corner& B, Corner& C, int depth, double L, double reach)
     {
-        const double L = std::max({(B.s - A.s).length(), (C.s - B.s).length(), (A.s - C.s).length()});
-        const double reach = geometry::triangle_corner_reach(A.s, B.s, C.s);
         const auto covered = [&] { return std::max({A.d, B.d, C.d}) + reach <= pass_; };
         if (covered()) return true;
         if (L <= leaf_) {
@@ -221,8 +223,9 @@ private:
             return false;
         }
         Corner ab = midpoint(A, B), bc = midpoint(B, C), ca = midpoint(C, A);
-        return passes(A, ab, ca, depth + 1) && passes(ab, B, bc, depth + 1) && passes(ca, bc, C, depth + 1) &&
-               passes(ab, bc, ca, depth + 1);
+        const double half_L = 0.5 * L, half_reach = 0.5 * reach;
+        return passes(A, ab, ca, depth + 1, half_L, half_reach) && passes(ab, B, bc, depth + 1, half_L, half_reach) &&
+               passes(ca, bc, C, depth + 1, half_L, half_reach) && passes(ab, bc, ca, depth + 1, half_L, half_reach);
     }
 
     static constexpr int kMaxDepth = 5; // 32 sub-edges per edge (the sample grid had at most 24)
