@@ -3,7 +3,7 @@
 // curves of the crossed cells are sampled every eps/2 and each sample must lie within 0.7 eps of
 // M. Most samples are settled by a few triangles near them (an earlier sample's, then the
 // triangles whose boxes reach the sample's cell); only a sample none of those passes is farther
-// than the threshold from all of M, and only there is the exact distance asked of an AABB tree.
+// than the threshold from all of M, and only there is its distance asked of an AABB tree.
 #include "mesher/hausdorff_refinement.h"
 
 #include "geometry/closest_on_triangle.h"
@@ -221,10 +221,11 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     });
 
     // The samples no nearby triangle passed are farther than `limit` from M; the candidate is
-    // the farthest, so their distances are needed exactly: the distance to the nearest of the
-    // triangles near the cells to check (all of M on the first call; those are the triangles
-    // the tree of earlier versions held). An AABB tree of the few of them near the far samples'
-    // cells gives it where it is at most `reach`; otherwise (rare) a tree of them all.
+    // the farthest, at that distance, so each needs its distance to the nearest of the triangles
+    // near the cells to check (all of M when they are a quarter of the crossed cells or more),
+    // the set earlier versions held in their one tree. An AABB tree of those of them within
+    // `reach` of the far samples' cells gives it where it is at most `reach`; otherwise (rare, or
+    // at a coarse eps, where `reach` would span many cells) a tree of the whole set.
     using KD = CGAL::Simple_cartesian<double>;
     using Tree = CGAL::AABB_tree<CGAL::AABB_traits<KD, CGAL::AABB_triangle_primitive<KD, std::vector<KD::Triangle_3>::const_iterator>>>;
     const auto near_any = [&](std::size_t i) { return 4 * todo.size() >= crossed_cells_.size() || n_near[i] > 0; };
@@ -233,6 +234,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         if (!checks[ti].far.empty()) far_cells.push_back({crossed_cells_[todo[ti]], std::uint32_t(ti)});
     std::sort(far_cells.begin(), far_cells.end());
     const double reach = 4 * limit;
+    const bool try_local = reach * to_index_units <= 1.0; // a few cells per axis around a triangle
     std::vector<std::size_t> near; // indices in tris of the tree's triangles
     std::vector<KD::Triangle_3> near_tris;
     Tree tree;
@@ -258,8 +260,11 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         });
         for (std::size_t i = 0; i < tris.size(); ++i)
             if (in_tree[i]) near.push_back(i);
-        // No triangle near: every far sample is farther than `limit` from M; any one triangle
-        // keeps the tree non-empty (its distances exceed `limit` too).
+        // The local set is empty: every triangle of the set is farther than `reach` from the far
+        // samples, so the whole set decides.
+        if (local && near.empty()) return false;
+        // No triangle near the cells to check: every far sample is farther than `limit` from M;
+        // any one triangle keeps the tree non-empty (its distances exceed `limit` too).
         if (near.empty()) near.push_back(0);
         const auto kp = [](const Vec3d& p) { return KD::Point_3(p[0], p[1], p[2]); };
         near_tris.clear();
@@ -285,7 +290,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         });
         return std::none_of(beyond.begin(), beyond.end(), [](char b) { return b != 0; });
     };
-    if (!far_cells.empty() && !measure(true)) measure(false);
+    if (!far_cells.empty() && !(try_local && measure(true))) measure(false);
     std::vector<std::vector<Candidate>> found(todo.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 16), [&](const auto& r) {
         for (std::size_t ti = r.begin(); ti != r.end(); ++ti) {

@@ -2,9 +2,7 @@
 
 #include "geometry/closest_on_triangle.h"
 #include "mesher/triangle_to_surface.h"
-#include "octree/cell_interpolant.h"
 #include "octree/segment_walk.h"
-
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -24,7 +24,7 @@
 //    boundaries h inside each cell; the wall between two copies is 2h long.
 // The threshold is 0.7 eps, leaving the sampling spacing's share of the margin. A facet's
 // verdict depends only on its vertices, so each facet is checked once; a cell's crease samples
-// are checked again only when a triangle nearest to one of them has left M.
+// are checked again only when a triangle that passed one of them (its witness) has left M.
 #include "mesher/closed_ball.h"
 #include "octree/sample_field.h"
 
@@ -62,7 +62,8 @@ private:
     std::vector<FacetKey> passed_;
     std::vector<openvdb::Coord> crossed_cells_;
     // Per crossed cell, what the last crease check found: no crease sample at all (F does not
-    // change, so never again), or passed with these triangles nearest to its samples.
+    // change, so never again), or passed, with a triangle within the threshold of each of its
+    // samples (its witnesses).
     enum class CreaseState : char { Unknown, NoCrease, Passed };
     std::vector<CreaseState> crease_state_;
     std::vector<std::vector<FacetKey>> crease_witness_;

@@ -191,7 +191,8 @@ private:
 
     /// \p L, \p reach: the longest edge and the corner reach of ABC. The four halves of a
     /// triangle are similar to it with ratio 1/2, so a sub-triangle's are its parent's halved
-    /// (exactly, in floating point) instead of measured again from the rounded midpoints.
+    /// (halving is exact in floating point) instead of measured again from its rounded
+    /// midpoints, which may differ from that in the last bit.
     bool passes(Corner& A, Corner& B, Corner& C, int depth, double L, double reach)
     {
         const auto covered = [&] { return std::max({A.d, B.d, C.d}) + reach <= pass_; };

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <set>
+#include <tuple>
 #include <vector>
 
 using namespace isodel;
@@ -81,6 +83,10 @@ TEST_CASE("point insertion: a candidate is skipped near an earlier accepted one 
         CHECK(skipped_near > 100);
         CHECK(skipped_vertex > 0);
         CHECK(beyond_window > 0);
+        // More occupied cells than the table's first 1024 slots hold at half load: it grows.
+        std::set<std::tuple<long, long, long>> occupied;
+        for (const Point& q : expected) occupied.emplace(cell_of(q.x()), cell_of(q.y()), cell_of(q.z()));
+        CHECK(occupied.size() > 512);
 
         const std::uint32_t first = id;
         const InsertionResult got = insert_candidates(dt, cache, candidates, id, cell);
