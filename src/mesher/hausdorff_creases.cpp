@@ -66,8 +66,8 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
             }
         }
     });
-    // A cell that passed before still passes while the triangles nearest to its samples are in
-    // M: d(s, M) <= d(s, T) for every T in M. Only the other cells are sampled again. A cell's
+    // A cell that passed before still passes while its witnesses (a triangle within the
+    // threshold of each sample) are in M: d(s, M) <= d(s, T) for every T in M. Only the other cells are sampled again. A cell's
     // witnesses were all in M at the last call (it was checked then, or they were all still
     // there), so one has left M iff it is among the facets that left since: a short list.
     std::vector<FacetKey> now(restricted.size());
