@@ -45,6 +45,28 @@ double distance_up(const octree::SampleField::Reader& reader, const Vec3d& x, do
     return best;
 }
 
+/// The field read through the mesher's slabs for \p eps (voxels; index = world here), and the
+/// check with the mesher's parameters: limit 0.7 eps, leaves of eps / 4, so every passed point
+/// is within `bound` = limit + leaf / sqrt(3).
+struct Setup {
+    Setup(openvdb::FloatGrid::Ptr grid, double eps)
+        : field(make_field(grid, eps)), reader(field), limit(0.7 * eps), leaf(0.25 * eps),
+          bound(limit + leaf / std::sqrt(3.0)),
+          to_surface(reader, openvdb::math::Mat3d::identity(), 0.5, limit, leaf, 2 * eps)
+    {
+    }
+    static octree::SampleField make_field(openvdb::FloatGrid::Ptr grid, double eps)
+    {
+        octree::SampleField f(grid, 0.0, Inside::Above);
+        f.set_face_slabs(octree::face_slabs_for_eps(eps));
+        return f;
+    }
+    octree::SampleField field;
+    octree::SampleField::Reader reader;
+    double limit, leaf, bound;
+    mutable mesher::detail::TriangleToSurface to_surface;
+};
+
 } // namespace
 
 TEST_CASE("triangle to surface: a passed triangle is within the covering bound of Sigma' at every point; small ones pass",
@@ -58,12 +80,10 @@ TEST_CASE("triangle to surface: a passed triangle is within the covering bound o
     const auto grid = testing::make_grid(16, 1.0, Vec3d(0.0), [&](const Vec3d& x) {
         return x[2] - 7.5 + 1.5 * std::abs(x[0] - 8) - 1.5 * std::abs(x[1] - 8);
     });
-    octree::SampleField field(grid, 0.0, Inside::Above);
-    const double eps = 0.1;
-    field.set_face_slabs(octree::face_slabs_for_eps(eps));
-    const octree::SampleField::Reader reader(field);
-    const double limit = 0.7 * eps, leaf = 0.25 * eps, bound = limit + leaf / std::sqrt(3.0);
-    mesher::detail::TriangleToSurface to_surface(reader, openvdb::math::Mat3d::identity(), 0.5, limit, leaf, 2 * eps);
+    const Setup setup(grid, 0.1);
+    const octree::SampleField::Reader& reader = setup.reader;
+    const double bound = setup.bound;
+    auto& to_surface = setup.to_surface;
 
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -119,12 +139,10 @@ TEST_CASE("triangle to surface: a pit of Sigma' under the middle of a triangle, 
         const double r = std::hypot(x[0] - 10, x[1] - 10);
         return x[2] - 10.4 + 6 * std::max(0.0, 1 - r / 2.4);
     });
-    octree::SampleField field(grid, 0.0, Inside::Above);
-    const double eps = 2.0;
-    field.set_face_slabs(octree::face_slabs_for_eps(eps));
-    const octree::SampleField::Reader reader(field);
-    const double limit = 0.7 * eps, leaf = 0.25 * eps, bound = limit + leaf / std::sqrt(3.0);
-    mesher::detail::TriangleToSurface to_surface(reader, openvdb::math::Mat3d::identity(), 0.5, limit, leaf, 2 * eps);
+    const Setup setup(grid, 2.0);
+    const octree::SampleField::Reader& reader = setup.reader;
+    const double bound = setup.bound;
+    auto& to_surface = setup.to_surface;
     Vec3d p[3];
     for (int k = 0; k < 3; ++k) {
         const double t = 2.0 * M_PI * k / 3 + 0.1;
