@@ -14,12 +14,16 @@ namespace isodel::mesher {
 Point robust_circumcenter(const Point& a, const Point& b, const Point& c, const Point& d);
 
 /// The Voronoi vertex dual to \p c. The vertices are taken in id order, so the rounded result
-/// does not depend on how the triangulation happens to store the cell (determinism).
+/// does not depend on how the triangulation happens to store the cell (determinism). Computed
+/// once per cell and kept in it (cell_base.h): the vertices' ids must be final when it is first
+/// asked for, as they are from insertion on.
 inline Point robust_circumcenter(const Cell_handle& c)
 {
-    std::array<Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
-    std::sort(v.begin(), v.end(), [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
-    return robust_circumcenter(v[0]->point(), v[1]->point(), v[2]->point(), v[3]->point());
+    return c->cached_circumcenter([&c] {
+        std::array<Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
+        std::sort(v.begin(), v.end(), [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
+        return robust_circumcenter(v[0]->point(), v[1]->point(), v[2]->point(), v[3]->point());
+    });
 }
 
 } // namespace isodel::mesher

@@ -39,9 +39,9 @@ struct VertexInfo {
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
 using Cb = CellWithFacetMarks<K>; // CGAL's Delaunay cell and the facet cache's marks (cell_base.h)
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
-static_assert(sizeof(Tds::Cell) ==
-                  sizeof(CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K>>::Cell),
-              "the facet marks should fit in the padding of CGAL's cell (cell_base.h)");
+static_assert(sizeof(Tds::Cell) <=
+                  sizeof(CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K>>::Cell) + 24,
+              "the facet marks and the circumcentre cache should add 24 bytes to CGAL's cell (cell_base.h)");
 using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
 using Vertex_handle = Delaunay::Vertex_handle;
 using Cell_handle = Delaunay::Cell_handle;

@@ -312,8 +312,9 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     // at its smaller id), later every edge of the cells around the touched vertices, since a
     // Voronoi facet changes only when a cell around its edge does. Plus the facets violated last
     // time (their point may have been skipped as too close to another one of the batch).
+    const bool first = first_;
     std::vector<Vertex_handle> from;
-    if (first_) {
+    if (first) {
         for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
             if (v->info().on_surface()) from.push_back(v);
         // In id order, so the jobs are listed in an order that does not depend on where the
@@ -323,76 +324,105 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     } else {
         from.swap(touched_);
     }
-    // A chunk of vertices at a time, each vertex's list deduplicated before it joins the jobs:
-    // an edge is seen from every cell around it, and the raw lists of all the E/N vertices of a
-    // 250 x 212 x 289 protein would be gigabytes.
-    constexpr std::size_t kChunk = std::size_t(1) << 15;
+    first_ = false;
+    touched_.clear();
     const auto by_edge_then_order = [](const EdgeJob& x, const EdgeJob& y) {
         return std::tie(x.a, x.b, x.order) < std::tie(y.a, y.b, y.order);
     };
     const auto same_edge = [](const EdgeJob& x, const EdgeJob& y) { return x.a == y.a && x.b == y.b; };
-    std::vector<EdgeJob> jobs;
-    std::vector<std::vector<EdgeJob>> per_vertex;
-    for (std::size_t begin = 0; begin < from.size(); begin += kChunk) {
-        const std::size_t end = std::min(begin + kChunk, from.size());
-        per_vertex.assign(end - begin, {});
-        for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
-            const Vertex_handle v = from[k];
-            auto& out = per_vertex[k - begin];
-            out.reserve((first_ ? 3 : 6) * cells.size());
-            for (const Cell_handle& c : cells)
-                for (int i = 0; i < 4; ++i)
-                    for (int j = i + 1; j < 4; ++j) {
-                        const auto va = c->vertex(i), vb = c->vertex(j);
-                        if (first_ && va != v && vb != v) continue; // only the edges at v
-                        if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
-                        if (!va->info().on_surface() && !vb->info().on_surface()) continue;
-                        const auto ia = va->info().id, ib = vb->info().id;
-                        if (first_ && va->info().on_surface() && vb->info().on_surface() && v->info().id != std::min(ia, ib))
-                            continue; // found from its other end
-                        // order: when it was found, so the first found of each edge sorts first
-                        // (a stable sort by edge, without stable_sort's buffer per vertex).
-                        out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib),
-                                       std::uint32_t(out.size())});
-                    }
-            std::sort(out.begin(), out.end(), by_edge_then_order);
-            out.erase(std::unique(out.begin(), out.end(), same_edge), out.end());
-        });
-        for (auto& list : per_vertex) {
-            for (EdgeJob& job : list) {
-                job.order = std::uint32_t(jobs.size());
-                jobs.push_back(job);
-            }
-            list = {};
+    // The edges of a star to check, one job per edge (the first found represents it).
+    const auto star_edges = [&](Vertex_handle v, const std::vector<Cell_handle>& cells, std::vector<EdgeJob>& out) {
+        out.clear();
+        for (const Cell_handle& c : cells)
+            for (int i = 0; i < 4; ++i)
+                for (int j = i + 1; j < 4; ++j) {
+                    const auto va = c->vertex(i), vb = c->vertex(j);
+                    if (first && va != v && vb != v) continue; // only the edges at v
+                    if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
+                    if (!va->info().on_surface() && !vb->info().on_surface()) continue;
+                    const auto ia = va->info().id, ib = vb->info().id;
+                    if (first && va->info().on_surface() && vb->info().on_surface() && v->info().id != std::min(ia, ib))
+                        continue; // found from its other end
+                    // order: when it was found, so the first found of each edge sorts first
+                    // (a stable sort by edge, without stable_sort's buffer per vertex).
+                    out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), std::uint32_t(out.size())});
+                }
+        std::sort(out.begin(), out.end(), by_edge_then_order);
+        out.erase(std::unique(out.begin(), out.end(), same_edge), out.end());
+    };
+    struct Found {
+        EdgeJob job;
+        Candidate candidate;
+    };
+    std::vector<Found> found;
+    // A chunk of vertices at a time: an edge is seen from every cell around it, and the raw
+    // lists of all the E/N vertices of a 250 x 212 x 289 protein would be gigabytes.
+    constexpr std::size_t kChunk = std::size_t(1) << 15;
+    if (first) {
+        // The first scan finds each edge from exactly one vertex (the filter above), so a
+        // vertex's list is all its edges' jobs: each is checked right away, while the star's
+        // cells are at hand, with no list of all 1.6 M jobs of a 128^3 protein to sort.
+        std::vector<std::vector<Found>> per_vertex;
+        tbb::enumerable_thread_specific<std::vector<EdgeJob>> lists;
+        tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
+        for (std::size_t begin = 0; begin < from.size(); begin += kChunk) {
+            const std::size_t end = std::min(begin + kChunk, from.size());
+            per_vertex.assign(end - begin, {});
+            for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
+                auto& jobs = lists.local();
+                star_edges(from[k], cells, jobs);
+                const auto& reader = readers.local();
+                for (const EdgeJob& job : jobs)
+                    if (auto c = check_facet(dt, job, field, reader, max_cells)) per_vertex[k - begin].push_back({job, *c});
+            });
+            for (auto& list : per_vertex) found.insert(found.end(), list.begin(), list.end());
         }
-    }
-    first_ = false;
-    touched_.clear();
-    for (const auto& [va, vb] : flagged_) {
-        Cell_handle c;
-        int i, j;
-        if (dt.is_edge(va, vb, c, i, j))
-            jobs.push_back({Delaunay::Edge(c, i, j), std::min(va->info().id, vb->info().id),
-                            std::max(va->info().id, vb->info().id), std::uint32_t(jobs.size())});
+    } else {
+        std::vector<EdgeJob> jobs;
+        std::vector<std::vector<EdgeJob>> per_vertex;
+        for (std::size_t begin = 0; begin < from.size(); begin += kChunk) {
+            const std::size_t end = std::min(begin + kChunk, from.size());
+            per_vertex.assign(end - begin, {});
+            for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
+                per_vertex[k - begin].reserve(6 * cells.size());
+                star_edges(from[k], cells, per_vertex[k - begin]);
+            });
+            for (auto& list : per_vertex) {
+                for (EdgeJob& job : list) {
+                    job.order = std::uint32_t(jobs.size());
+                    jobs.push_back(job);
+                }
+                list = {};
+            }
+        }
+        for (const auto& [va, vb] : flagged_) {
+            Cell_handle c;
+            int i, j;
+            if (dt.is_edge(va, vb, c, i, j))
+                jobs.push_back({Delaunay::Edge(c, i, j), std::min(va->info().id, vb->info().id),
+                                std::max(va->info().id, vb->info().id), std::uint32_t(jobs.size())});
+        }
+        // One job per edge (an edge is seen from several cells), in id order; the first found
+        // represents it.
+        tbb::parallel_sort(jobs.begin(), jobs.end(), by_edge_then_order);
+        jobs.erase(std::unique(jobs.begin(), jobs.end(), same_edge), jobs.end());
+        std::vector<std::optional<Candidate>> checked(jobs.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size(), 256), [&](const auto& r) {
+            const octree::SampleField::Reader reader(field);
+            for (std::size_t i = r.begin(); i != r.end(); ++i) checked[i] = check_facet(dt, jobs[i], field, reader, max_cells);
+        });
+        for (std::size_t i = 0; i < jobs.size(); ++i)
+            if (checked[i]) found.push_back({jobs[i], *checked[i]});
     }
     flagged_.clear();
-    // One job per edge (an edge is seen from several cells), in id order; the first found
-    // represents it.
-    tbb::parallel_sort(jobs.begin(), jobs.end(), by_edge_then_order);
-    jobs.erase(std::unique(jobs.begin(), jobs.end(), same_edge), jobs.end());
-
-    std::vector<std::optional<Candidate>> found(jobs.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size(), 256), [&](const auto& r) {
-        const octree::SampleField::Reader reader(field);
-        for (std::size_t i = r.begin(); i != r.end(); ++i) found[i] = check_facet(dt, jobs[i], field, reader, max_cells);
-    });
+    // In id order of the edges (the first scan found them by vertex).
+    std::sort(found.begin(), found.end(), [](const Found& x, const Found& y) { return std::tie(x.job.a, x.job.b) < std::tie(y.job.a, y.job.b); });
     std::vector<Candidate> out;
-    for (std::size_t i = 0; i < jobs.size(); ++i)
-        if (found[i]) {
-            out.push_back(*found[i]);
-            const auto& e = jobs[i].edge;
-            flagged_.push_back({e.first->vertex(e.second), e.first->vertex(e.third)});
-        }
+    for (const Found& f : found) {
+        out.push_back(f.candidate);
+        const auto& e = f.job.edge;
+        flagged_.push_back({e.first->vertex(e.second), e.first->vertex(e.third)});
+    }
     return out;
 }
 

@@ -29,7 +29,11 @@ public:
     std::uint32_t copy_index = 0;
 };
 
-using ParallelTds = CGAL::Triangulation_data_structure_3<WithCopyIndex<Vb>, WithCopyIndex<Cb>, CGAL::Parallel_tag>;
+// The build's cells need none of the mesher's cell caches (cell_base.h): copy_into makes fresh
+// cells, and CGAL's plain cell keeps the parallel build's memory traffic down.
+using ParallelTds = CGAL::Triangulation_data_structure_3<WithCopyIndex<Vb>,
+                                                         WithCopyIndex<CGAL::Delaunay_triangulation_cell_base_3<K>>,
+                                                         CGAL::Parallel_tag>;
 using ParallelDelaunay = CGAL::Delaunay_triangulation_3<K, ParallelTds>;
 
 /// Makes \p dst a copy of \p src's triangulation, as CGAL's copy_tds does (vertices and cells
