@@ -44,8 +44,14 @@ public:
     /// repeats (FacetCache::active()'s order).
     std::vector<Candidate> violations(const std::vector<const FacetCache::Entry*>& restricted);
 
-    /// Crease samples farther than the threshold from the triangles of \p restricted.
+    /// Crease samples farther than the threshold from the triangles of \p restricted. With the
+    /// environment variable ISODEL_CHECK_INCREMENTAL set, each call also computes afresh what
+    /// it kept from the last call (M's triangles) and what its block filter skipped (the
+    /// triangles near the cells to check), and throws std::logic_error if they differ.
     std::vector<Candidate> crease_violations(const std::vector<const FacetCache::Entry*>& restricted);
+
+    /// How many calls (all instances, for tests) had their block filter checked that way.
+    static std::size_t crease_block_filter_checks();
 
     /// Only candidates \p keep accepts are returned; a facet or crease cell whose candidate it
     /// rejects is not this run's to refine and is not checked again (partitioned meshing).
@@ -68,6 +74,13 @@ private:
     std::vector<CreaseState> crease_state_;
     std::vector<std::vector<FacetKey>> crease_witness_;
     std::vector<FacetKey> crease_m_; // M's facets at the last crease check, sorted
+    // Their triangles, in that order: a pure function of the key (vertices in id order), so a
+    // facet still in M keeps its triangle (world corners and index-space box) from the last call.
+    struct CreaseTriangle {
+        openvdb::Vec3d a, b, c; ///< world
+        openvdb::Vec3d lo, hi;  ///< bounding box in index space
+    };
+    std::vector<CreaseTriangle> crease_tris_;
     CandidateFilter keep_;
 };
 

@@ -6,6 +6,7 @@
 // also verify.
 #include <catch2/catch.hpp>
 
+#include "mesher/hausdorff_refinement.h"
 #include "mesher_test_support.h"
 
 #include <cstdlib>
@@ -34,4 +35,23 @@ TEST_CASE("closed ball checks: kept verdicts equal a fresh examination of every 
             CHECK(r.report.passed());
             CHECK(r.mesh.stats.n_topology > 0);
         }
+}
+
+TEST_CASE("crease check: kept triangles and the block filter equal a fresh computation", "[closed-ball][crease]")
+{
+    // Random volumes at a fine eps take several crease rounds, the later ones rechecking a few
+    // cells of hundreds: there the block filter is on, and with ISODEL_CHECK_INCREMENTAL set
+    // each call recomputes the triangles it kept and the triangles near the cells to check.
+    const SelfCheck on;
+    const std::size_t before = mesher::HausdorffRefinement::crease_block_filter_checks();
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+        const auto grid = testing::random_volume(10, seed, false);
+        INFO("random 10^3 volume, seed " << seed << ", eps 0.1 voxel");
+        testing::MeshAndVerify r;
+        REQUIRE_NOTHROW(r = testing::mesh_and_verify(*grid, 0.0, Inside::Above, 0.1));
+        INFO(r.report.summary());
+        CHECK(r.report.passed());
+    }
+    INFO("block filter checks: " << mesher::HausdorffRefinement::crease_block_filter_checks() - before);
+    CHECK(mesher::HausdorffRefinement::crease_block_filter_checks() > before);
 }
