@@ -87,7 +87,9 @@ public:
     const std::vector<Vec3d>& leaf_normals() const { return normals_; }
 
 private:
-    void box(const octree::Trilinear& f, const Coord& cell, const Vec3d& lo, const Vec3d& hi, int depth)
+    /// \p known: F at the box's corners when the parent box has them (its 3 x 3 x 3 lattice).
+    void box(const octree::Trilinear& f, const Coord& cell, const Vec3d& lo, const Vec3d& hi, int depth,
+             const double* known = nullptr)
     {
         if (++boxes_ > kMaxBoxes) {
             settled_ = false;
@@ -98,7 +100,7 @@ private:
         int inside = 0;
         for (int k = 0; k < 8; ++k) {
             X[k] = Vec3d(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
-            F[k] = f(X[k][0], X[k][1], X[k][2]);
+            F[k] = known ? known[k] : f(X[k][0], X[k][1], X[k][2]);
             inside += F[k] >= 0; // phi >= 0 is inside (segment_walk.h's convention)
         }
         if (inside == 0 || inside == 8) return;
@@ -113,10 +115,23 @@ private:
             return;
         }
         const Vec3d m = 0.5 * (lo + hi);
+        // F on the lattice {lo, m, hi}^3 of the children's corners, each point evaluated once
+        // (27 evaluations instead of 64; the same coordinates, so the same values): on axis d,
+        // child k's corner j is lo, m or hi as bit d of k plus bit d of j is 0, 1 or 2.
+        const double axis[3][3] = {{lo[0], m[0], hi[0]}, {lo[1], m[1], hi[1]}, {lo[2], m[2], hi[2]}};
+        double G[27];
+        for (int i = 0; i < 27; ++i) {
+            const int ix = i % 3, iy = i / 3 % 3, iz = i / 9;
+            G[i] = ix != 1 && iy != 1 && iz != 1 ? F[ix / 2 | (iy / 2) << 1 | (iz / 2) << 2]
+                                                  : f(axis[0][ix], axis[1][iy], axis[2][iz]);
+        }
         for (int k = 0; k < 8; ++k) {
             const Vec3d a(k & 1 ? m[0] : lo[0], k & 2 ? m[1] : lo[1], k & 4 ? m[2] : lo[2]);
             const Vec3d b(k & 1 ? hi[0] : m[0], k & 2 ? hi[1] : m[1], k & 4 ? hi[2] : m[2]);
-            box(f, cell, a, b, depth + 1);
+            double C[8];
+            for (int j = 0; j < 8; ++j)
+                C[j] = G[(k & 1) + (j & 1) + 3 * ((k >> 1 & 1) + (j >> 1 & 1)) + 9 * ((k >> 2 & 1) + (j >> 2 & 1))];
+            box(f, cell, a, b, depth + 1, C);
         }
     }
 
@@ -201,36 +216,42 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
                                                     VoronoiCellDiskStats* stats)
 {
     // The cells and neighbours around each vertex, gathered in parallel (gather_star: no shared
-    // visit marks). The neighbours are sorted by id: VoronoiCellPlanes clips in their order, so
-    // the rounded results must not depend on how the triangulation stores the star.
-    std::vector<CellGeometry> geo(pending.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 64), [&](const auto& r) {
-        std::vector<Vertex_handle> nbs;
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            const Vertex_handle v = pending[i];
-            gather_star(v, geo[i].cells);
-            nbs.clear();
-            for (const Cell_handle& c : geo[i].cells)
-                for (int k = 0; k < 4; ++k)
-                    if (c->vertex(k) != v && !dt.is_infinite(c->vertex(k))) nbs.push_back(c->vertex(k));
-            std::sort(nbs.begin(), nbs.end(), [](Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; });
-            nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
-            for (const Vertex_handle& w : nbs) geo[i].neighbours.push_back(to_vdb(w->point()));
-        }
-    });
+    // visit marks) right before its certificate, in scratch lists each thread reuses. The
+    // neighbours are sorted by id: VoronoiCellPlanes clips in their order, so the rounded
+    // results must not depend on how the triangulation stores the star. (Gathered into lists
+    // of all pending vertices first, with a comparator reading each vertex's id, this took
+    // about 1 s of CPU on a 128^3 protein's first call.)
     enum class Verdict { Certified, Sampled, Violated, Unresolved };
     std::vector<Verdict> verdict(pending.size(), Verdict::Certified);
     std::vector<std::optional<Candidate>> found(pending.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
+    struct Scratch {
+        CellGeometry geo;
+        std::vector<std::pair<std::uint32_t, Vertex_handle>> nbs; // (id, vertex)
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 16), [&](const auto& r) {
         auto& reader = readers.local();
+        auto& [g, nbs] = scratch.local();
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const Vertex_handle v = pending[i];
-            if (!geo[i].measure(dt, field, v->point())) { // a hole in G: the voxel-bound repair's business
+            gather_star(v, g.cells);
+            nbs.clear();
+            for (const Cell_handle& c : g.cells)
+                for (int k = 0; k < 4; ++k)
+                    if (c->vertex(k) != v && !dt.is_infinite(c->vertex(k)))
+                        nbs.push_back({c->vertex(k)->info().id, c->vertex(k)});
+            std::sort(nbs.begin(), nbs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+            nbs.erase(std::unique(nbs.begin(), nbs.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+                      nbs.end());
+            g.neighbours.clear();
+            for (const auto& [id, w] : nbs) g.neighbours.push_back(to_vdb(w->point()));
+            g.extent = 0;
+            if (!g.measure(dt, field, v->point())) { // a hole in G: the voxel-bound repair's business
                 verdict[i] = Verdict::Unresolved;
                 continue;
             }
-            const VoronoiCellPlanes planes(field, to_vdb(v->point()), geo[i].neighbours);
+            const VoronoiCellPlanes planes(field, to_vdb(v->point()), g.neighbours);
             CellCertificate cert(reader, to_vdb(v->point()), planes);
             Vec3d d = cert.normal_at_p();
             if (!(d.lengthSqr() > 0)) {
@@ -240,7 +261,7 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
             std::vector<Vec3d> normals{d.unit()};
             bool certified = false;
             for (int k = 0; k < kDirections && !certified; ++k) {
-                cert.run(geo[i].lo, geo[i].hi, d);
+                cert.run(g.lo, g.hi, d);
                 certified = cert.settled();
                 if (certified || !cert.farthest_point()) break;
                 for (const Vec3d& n : cert.leaf_normals())
@@ -257,14 +278,15 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
             // the other checks. Measured under the crease cut that came before the face slabs
             // (2026-11-26): on 1hpv_molmap at eps 0.25, 4141 of 17113 cells needed the sample:
             // 3508 had chi 1, 359 chi 0, 274 chi 2, none negative; inserting for chi != 1 then
-            // broke 5 of 1000 random volumes (not measured again on Sigma'). A handle the sample shows but no point can split (none found in the
-            // cell, or the cell under min_extent) stays pending and counts as unresolved.
-            const int chi = sampled_euler_characteristic(reader, planes, geo[i].lo, geo[i].hi, kEulerSamplesPerVoxel);
+            // broke 5 of 1000 random volumes (not measured again on Sigma'). A handle the sample
+            // shows but no point can split (none found in the cell, or the cell under
+            // min_extent) stays pending and counts as unresolved.
+            const int chi = sampled_euler_characteristic(reader, planes, g.lo, g.hi, kEulerSamplesPerVoxel);
             if (chi >= 0) {
                 verdict[i] = Verdict::Sampled;
                 continue;
             }
-            if (!cert.farthest_point() || geo[i].extent < min_extent) {
+            if (!cert.farthest_point() || g.extent < min_extent) {
                 verdict[i] = Verdict::Unresolved;
                 continue;
             }
