@@ -11,7 +11,7 @@
 // (destroying either erases it), so a recorded facet is marked wherever it is seen; records
 // dropped otherwise (FacetCache::reset) only leave marks without records.
 //
-// The Voronoi vertex (circumcentre.h's robust circumcentre, 24 bytes and a state byte). Every
+// The Voronoi vertex (circumcenter.h's robust circumcentre, 24 bytes and a state byte). Every
 // check of a round reads the Voronoi vertices around the facets and vertices it looks at: on a
 // 128^3 protein at eps 0.1 voxel the facet records, loop scan, disk certificates and grid-cell
 // checks computed each cell's circumcentre about ten times. The mesher never changes a live
@@ -28,7 +28,7 @@
 namespace isodel::mesher {
 
 template <class GT, class Cb = CGAL::Delaunay_triangulation_cell_base_3<GT>>
-class CellWithFacetMarks : public Cb {
+class CellWithCaches : public Cb {
 public:
     using Vertex_handle = typename Cb::Vertex_handle;
     using Cell_handle = typename Cb::Cell_handle;
@@ -36,19 +36,19 @@ public:
     template <class TDS2>
     struct Rebind_TDS {
         using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
-        using Other = CellWithFacetMarks<GT, Cb2>;
+        using Other = CellWithCaches<GT, Cb2>;
     };
 
-    CellWithFacetMarks() = default;
-    CellWithFacetMarks(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3) : Cb(v0, v1, v2, v3) {}
-    CellWithFacetMarks(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3, Cell_handle n0,
+    CellWithCaches() = default;
+    CellWithCaches(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3) : Cb(v0, v1, v2, v3) {}
+    CellWithCaches(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3, Cell_handle n0,
                        Cell_handle n1, Cell_handle n2, Cell_handle n3)
         : Cb(v0, v1, v2, v3, n0, n1, n2, n3)
     {
     }
     // A copy is a new cell: CGAL's copy keeps the combinatorics, and the caches start empty.
-    CellWithFacetMarks(const CellWithFacetMarks& o) : Cb(o) {}
-    CellWithFacetMarks& operator=(const CellWithFacetMarks& o)
+    CellWithCaches(const CellWithCaches& o) : Cb(o) {}
+    CellWithCaches& operator=(const CellWithCaches& o)
     {
         Cb::operator=(o);
         marks_ = 0;

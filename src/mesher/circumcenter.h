@@ -16,7 +16,7 @@ Point robust_circumcenter(const Point& a, const Point& b, const Point& c, const 
 /// The Voronoi vertex dual to \p c. The vertices are taken in id order, so the rounded result
 /// does not depend on how the triangulation happens to store the cell (determinism). Computed
 /// once per cell and kept in it (cell_base.h): the vertices' ids must be final when it is first
-/// asked for, as they are from insertion on.
+/// asked for (they are set right after each insertion, before any check runs).
 inline Point robust_circumcenter(const Cell_handle& c)
 {
     return c->cached_circumcenter([&c] {

@@ -37,7 +37,7 @@ struct VertexInfo {
 };
 
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
-using Cb = CellWithFacetMarks<K>; // CGAL's Delaunay cell and the facet cache's marks (cell_base.h)
+using Cb = CellWithCaches<K>; // CGAL's Delaunay cell, the facet cache's marks and the Voronoi vertex (cell_base.h)
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 static_assert(sizeof(Tds::Cell) <=
                   sizeof(CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K>>::Cell) + 24,

@@ -317,9 +317,11 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     if (first) {
         for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
             if (v->info().on_surface()) from.push_back(v);
-        // In id order, so the jobs are listed in an order that does not depend on where the
-        // triangulation stores its vertices. (Which cell represents an edge does not matter:
-        // check_facet circulates around it from a canonical cell.)
+        // In id order, so the candidates are found in an order that does not depend on where
+        // the triangulation stores its vertices. An edge is represented by the first cell that
+        // shows it in its vertex's star (gather_star's order depends only on the connectivity):
+        // check_facet circulates from a canonical cell, but takes the edge's two points in the
+        // representative's order, which the candidate's distance to the edge may round by.
         std::sort(from.begin(), from.end(), [](Vertex_handle x, Vertex_handle y) { return x->info().id < y->info().id; });
     } else {
         from.swap(touched_);

@@ -74,8 +74,7 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         else fresh.push_back(i);
     }
     const auto triangle_of = [&](const FacetCache::Entry& e) {
-        auto vs = facet_vertices(e.facet);
-        std::sort(vs.begin(), vs.end(), [](const auto& x, const auto& y) { return x->info().id < y->info().id; });
+        const auto vs = facet_vertices(e.facet); // in id order: a function of the key
         CreaseTriangle t;
         t.a = to_vdb(vs[0]->point());
         t.b = to_vdb(vs[1]->point());
@@ -318,6 +317,18 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
                     else for_each_cell_near(tris[i], far_cells, reach * to_index_units, [&](std::uint32_t) { in_tree[i] = 1; });
                 }
         });
+        if (self_check && local && !blocks.empty()) {
+            const std::vector<openvdb::Coord> kept = std::move(blocks);
+            blocks.clear(); // off: every triangle's cells looked up
+            for (std::size_t i = 0; i < tris.size(); ++i) {
+                char in = 0;
+                if (near_any(i))
+                    for_each_cell_near(tris[i], far_cells, reach * to_index_units, [&](std::uint32_t) { in = 1; });
+                if (in != in_tree[i])
+                    throw std::logic_error("crease check: the block filter skipped a triangle near a far sample's cell");
+            }
+            blocks = kept;
+        }
         for (std::size_t i = 0; i < tris.size(); ++i)
             if (in_tree[i]) near.push_back(i);
         // The local set is empty: every triangle of the set is farther than `reach` from the far
