@@ -184,7 +184,8 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         for (std::size_t i = 0; i < tris.size(); ++i) {
             std::uint32_t n = 0;
             for_each_cell_near(tris[i], cells, margin, [&](std::uint32_t) { ++n; });
-            if (n != n_near[i]) throw std::logic_error("crease check: the block filter skipped a triangle near a cell to check");
+            if (n != n_near[i])
+                throw std::logic_error("crease check: the block filter skipped a triangle near a cell to check");
         }
         blocks = kept;
         ++g_block_filter_checks;
