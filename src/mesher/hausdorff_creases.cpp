@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdint>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -61,18 +60,20 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, restricted.size(), 4096), [&](const auto& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) now[i] = restricted[i]->key;
     });
-    std::vector<FacetKey> left; // in the last call's M, not in this one; both sorted
-    std::set_difference(crease_m_.begin(), crease_m_.end(), now.begin(), now.end(), std::back_inserter(left));
-    // M's triangles: the last call's for the facets still in M (after the first call nearly all
-    // of them: reading every facet's vertices again, scattered in memory, took ~95 ms a call
-    // on a 128^3 protein), computed for the new ones.
+    // One merge walk of the last call's M and this one (both sorted) finds the facets that left
+    // and the triangles to keep: the last call's for the facets still in M (after the first call
+    // nearly all of them: reading every facet's vertices again, scattered in memory, took ~95 ms
+    // a call on a 128^3 protein); the new facets' are computed.
+    std::vector<FacetKey> left;      // in the last call's M, not in this one, sorted
+    std::vector<std::size_t> fresh;  // indices in restricted of the facets new in M
     std::vector<CreaseTriangle> built(restricted.size());
-    std::vector<std::size_t> fresh; // indices in restricted of the facets new in M
-    for (std::size_t i = 0, j = 0; i < now.size(); ++i) {
-        while (j < crease_m_.size() && crease_m_[j] < now[i]) ++j;
-        if (j < crease_m_.size() && crease_m_[j] == now[i]) built[i] = crease_tris_[j];
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        for (; j < crease_m_.size() && crease_m_[j] < now[i]; ++j) left.push_back(crease_m_[j]);
+        if (j < crease_m_.size() && crease_m_[j] == now[i]) built[i] = crease_tris_[j++];
         else fresh.push_back(i);
     }
+    left.insert(left.end(), crease_m_.begin() + std::ptrdiff_t(j), crease_m_.end());
     const auto triangle_of = [&](const FacetCache::Entry& e) {
         const auto vs = facet_vertices(e.facet); // in id order: a function of the key
         CreaseTriangle t;
@@ -133,6 +134,13 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
         return openvdb::Coord(down(c[0]), down(c[1]), down(c[2]));
     };
     std::vector<openvdb::Coord> blocks;
+    // Runs f with the block filter off (the self-checks' fresh computation).
+    const auto without_blocks = [&](auto&& f) {
+        std::vector<openvdb::Coord> kept;
+        kept.swap(blocks);
+        f();
+        blocks.swap(kept);
+    };
     if (16 * todo.size() < crossed_cells_.size()) {
         for (const std::size_t ci : todo) blocks.push_back(block_of(crossed_cells_[ci]));
         std::sort(blocks.begin(), blocks.end());
@@ -179,15 +187,14 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
             for_each_cell_near(tris[i], cells, margin, [&](std::uint32_t) { ++n_near[i]; });
     });
     if (self_check && !blocks.empty()) {
-        const std::vector<openvdb::Coord> kept = std::move(blocks);
-        blocks.clear(); // off: every triangle's cells looked up
-        for (std::size_t i = 0; i < tris.size(); ++i) {
-            std::uint32_t n = 0;
-            for_each_cell_near(tris[i], cells, margin, [&](std::uint32_t) { ++n; });
-            if (n != n_near[i])
-                throw std::logic_error("crease check: the block filter skipped a triangle near a cell to check");
-        }
-        blocks = kept;
+        without_blocks([&] {
+            for (std::size_t i = 0; i < tris.size(); ++i) {
+                std::uint32_t n = 0;
+                for_each_cell_near(tris[i], cells, margin, [&](std::uint32_t) { ++n; });
+                if (n != n_near[i])
+                    throw std::logic_error("crease check: the block filter skipped a triangle near a cell to check");
+            }
+        });
         ++g_block_filter_checks;
     }
     std::vector<std::size_t> pair_at(tris.size() + 1, 0);
@@ -318,18 +325,17 @@ std::vector<Candidate> HausdorffRefinement::crease_violations(const std::vector<
                     else for_each_cell_near(tris[i], far_cells, reach * to_index_units, [&](std::uint32_t) { in_tree[i] = 1; });
                 }
         });
-        if (self_check && local && !blocks.empty()) {
-            const std::vector<openvdb::Coord> kept = std::move(blocks);
-            blocks.clear(); // off: every triangle's cells looked up
-            for (std::size_t i = 0; i < tris.size(); ++i) {
-                char in = 0;
-                if (near_any(i))
-                    for_each_cell_near(tris[i], far_cells, reach * to_index_units, [&](std::uint32_t) { in = 1; });
-                if (in != in_tree[i])
-                    throw std::logic_error("crease check: the block filter skipped a triangle near a far sample's cell");
-            }
-            blocks = kept;
-        }
+        if (self_check && local && !blocks.empty())
+            without_blocks([&] {
+                for (std::size_t i = 0; i < tris.size(); ++i) {
+                    char in = 0;
+                    if (near_any(i))
+                        for_each_cell_near(tris[i], far_cells, reach * to_index_units, [&](std::uint32_t) { in = 1; });
+                    if (in != in_tree[i])
+                        throw std::logic_error(
+                            "crease check: the block filter skipped a triangle near a far sample's cell");
+                }
+            });
         for (std::size_t i = 0; i < tris.size(); ++i)
             if (in_tree[i]) near.push_back(i);
         // The local set is empty: every triangle of the set is farther than `reach` from the far
