@@ -8,6 +8,7 @@
 #include <openvdb/math/Vec3.h>
 
 #include "mesher/cell_base.h"
+#include "mesher/delaunay_traits.h"
 
 #include <array>
 #include <cstdint>
@@ -42,7 +43,7 @@ using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 static_assert(sizeof(Tds::Cell) <=
                   sizeof(CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K>>::Cell) + 24,
               "the facet marks and the circumcentre cache should add 24 bytes to CGAL's cell (cell_base.h)");
-using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
+using Delaunay = CGAL::Delaunay_triangulation_3<DelaunayTraits, Tds>; // EPICK's decisions (delaunay_traits.h)
 using Vertex_handle = Delaunay::Vertex_handle;
 using Cell_handle = Delaunay::Cell_handle;
 using Facet = Delaunay::Facet;

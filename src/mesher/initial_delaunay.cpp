@@ -34,7 +34,7 @@ public:
 using ParallelTds = CGAL::Triangulation_data_structure_3<WithCopyIndex<Vb>,
                                                          WithCopyIndex<CGAL::Delaunay_triangulation_cell_base_3<K>>,
                                                          CGAL::Parallel_tag>;
-using ParallelDelaunay = CGAL::Delaunay_triangulation_3<K, ParallelTds>;
+using ParallelDelaunay = CGAL::Delaunay_triangulation_3<DelaunayTraits, ParallelTds>;
 
 /// Makes \p dst a copy of \p src's triangulation, as CGAL's copy_tds does (vertices and cells
 /// created in \p src's order, so \p dst stores them in the same order), but with the handle

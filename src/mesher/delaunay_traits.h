@@ -1,0 +1,64 @@
+#pragma once
+// Internal: the geometric traits of the mesher's Delaunay triangulation (delaunay.h): EPICK,
+// with one exact shortcut in the in-sphere test.
+//
+// Why: the grid points G of the protective layer are cospherical in every grid cube (the eight
+// corners of a box lie on one sphere), so the initial triangulation meets in-sphere tests whose
+// determinant is exactly 0. CGAL's floating-point filters cannot decide those, and each one fell
+// to EPICK's multiprecision (Mpzf) evaluation: ~2 M tests, ~7 % of a 128^3 protein's
+// single-thread run. Three in four of them are five corners of one box, which
+// BoxCornerInSphere::on_one_box recognises from a few comparisons of coordinates.
+//
+// The decisions stay EPICK's: the shortcut answers only where the determinant is exactly 0,
+// which EPICK's exact evaluation would find; everything else goes through EPICK's own predicate.
+// CGAL's Delaunay_triangulation_3 then breaks the tie by symbolic perturbation as before.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <array>
+
+namespace isodel::mesher {
+
+/// What EPICK's in-sphere test does after its semi-static filter failed, with the box shortcut
+/// first.
+struct BoxCornerInSphere {
+    using Point = CGAL::Epick::Point_3;
+    using result_type = CGAL::Oriented_side;
+
+    CGAL::Oriented_side operator()(const Point& p, const Point& q, const Point& r, const Point& s, const Point& t) const
+    {
+        if (on_one_box({&p, &q, &r, &s, &t})) return CGAL::ON_ORIENTED_BOUNDARY;
+        return CGAL::Epick().side_of_oriented_sphere_3_object()(p, q, r, s, t);
+    }
+
+    /// Whether each coordinate takes at most two values on the points. They are then corners of
+    /// one axis-aligned box, all as far from its centre, or all in one plane x, y or z = const:
+    /// cospherical or coplanar either way, so the in-sphere determinant is exactly 0 (the
+    /// points lifted to the paraboloid lie in one hyperplane). Comparisons of doubles: exact.
+    static bool on_one_box(const std::array<const Point*, 5>& points)
+    {
+        for (int k = 0; k < 3; ++k) {
+            const double a = points[0]->cartesian(k);
+            double b = a;
+            for (int i = 1; i < 5; ++i) {
+                const double x = points[i]->cartesian(k);
+                if (x == a || x == b) continue;
+                if (b != a) return false; // a third value
+                b = x;
+            }
+        }
+        return true;
+    }
+};
+
+/// EPICK, but its in-sphere test is CGAL's semi-static filter (EPICK's own first stage) falling
+/// back to BoxCornerInSphere.
+struct DelaunayTraits : CGAL::Epick {
+    struct FilterBase { // what CGAL's static filter reads from its kernel: the point and the fallback
+        using Point_3 = CGAL::Epick::Point_3;
+        using Side_of_oriented_sphere_3 = BoxCornerInSphere;
+    };
+    using Side_of_oriented_sphere_3 = CGAL::internal::Static_filters_predicates::Side_of_oriented_sphere_3<FilterBase>;
+    Side_of_oriented_sphere_3 side_of_oriented_sphere_3_object() const { return {}; }
+};
+
+} // namespace isodel::mesher
