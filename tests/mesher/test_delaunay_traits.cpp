@@ -52,7 +52,7 @@ TEST_CASE("the traits' in-sphere test is EPICK's on lattice and grid-edge points
                                    : lattice(near(rng), near(rng), near(rng));
         const auto expected = epick_test(p[0], p[1], p[2], p[3], p[4]);
         if (traits_test(p[0], p[1], p[2], p[3], p[4]) != expected) ++differ;
-        if (BoxCornerInSphere::on_one_box({&p[0], &p[1], &p[2], &p[3], &p[4]})) {
+        if (InSphereAfterFilter::on_one_box({&p[0], &p[1], &p[2], &p[3], &p[4]})) {
             ++box;
             if (expected != CGAL::ON_ORIENTED_BOUNDARY) ++box_not_zero;
         } else if (expected == CGAL::ON_ORIENTED_BOUNDARY) {
