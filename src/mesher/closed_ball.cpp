@@ -20,7 +20,7 @@ double nearest_vertex_distance(const Facet& f, const Point& p)
 
 Candidate candidate_of(const FacetCache::Entry& e, PointKind kind)
 {
-    return {e.record->surface_point, kind, nearest_vertex_distance(e.facet, e.record->surface_point), e.key};
+    return {e.record->surface_point, kind, nearest_vertex_distance(e.facet, e.record->surface_point), e.key, e.key.v[0]};
 }
 
 int find_root(std::vector<int>& parent, int i)
@@ -198,7 +198,7 @@ void ViolationFinder::examine(const FacetCache& cache, std::uint32_t p)
         double d = INFINITY;
         for (const std::uint32_t id : fs[m].key.v)
             d = std::min(d, std::sqrt(CGAL::squared_distance(fs[m].surface_point, cache.vertex_point(id))));
-        return Candidate{fs[m].surface_point, PointKind::Topology, d, fs[m].key};
+        return Candidate{fs[m].surface_point, PointKind::Topology, d, fs[m].key, fs[m].key.v[0]};
     };
     spokes_.clear();
     for (std::size_t m = 0; m < n; ++m)

@@ -16,6 +16,10 @@ struct Candidate {
     PointKind kind;
     double spacing; ///< distance to the nearest vertex of the element that asked for it
     FacetKey origin; ///< deterministic order
+    /// The id of a vertex near p, where the insertion's walk to p starts (kNoVertex: from the
+    /// last inserted point). Only a start: the triangulation is the same from any.
+    std::uint32_t near = kNoVertex;
+    static constexpr std::uint32_t kNoVertex = 0xffffffffu;
 };
 
 enum class Violation {

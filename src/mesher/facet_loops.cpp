@@ -295,7 +295,8 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
         if (d > best_d) {
             best_d = d;
             const double spacing = std::sqrt(std::min(CGAL::squared_distance(pw, pa), CGAL::squared_distance(pw, pb)));
-            best = Candidate{pw, PointKind::Topology, spacing, FacetKey{{job.a, job.b, std::numeric_limits<std::uint32_t>::max()}}};
+            best = Candidate{pw, PointKind::Topology, spacing,
+                             FacetKey{{job.a, job.b, std::numeric_limits<std::uint32_t>::max()}}, job.a};
         }
     }
     return best;

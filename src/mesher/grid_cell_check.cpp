@@ -23,7 +23,7 @@ struct Best {
     {
         if (dd > d || (dd == d && p < c->p)) {
             d = dd;
-            c = Candidate{p, PointKind::Topology, std::sqrt(dd), FacetKey{{g->info().id, 0, 0}}};
+            c = Candidate{p, PointKind::Topology, std::sqrt(dd), FacetKey{{g->info().id, 0, 0}}, g->info().id};
         }
     }
 };

@@ -171,7 +171,7 @@ std::vector<Candidate> HausdorffRefinement::violations(const std::vector<const F
             passing.push_back(e->key); // not ours (set_filter)
             continue;
         }
-        out.push_back({x, PointKind::Geometry, spacing, e->key});
+        out.push_back({x, PointKind::Geometry, spacing, e->key, e->key.v[0]});
     }
     if (!passing.empty()) {
         std::vector<FacetKey> merged;

@@ -99,7 +99,9 @@ InsertionResult insert_candidates(Delaunay& dt, FacetCache& cache, std::vector<C
                     close = accepted.any_in({k.x + dx, k.y + dy, k.z + dz},
                                             [&](const Point& q) { return CGAL::squared_distance(q, c.p) < r * r; });
         if (close) continue;
-        const Vertex_handle v = cache.insert(dt, c.p, VertexInfo{next_id, c.kind}, hint);
+        // The walk to p starts at the vertex that asked for it, near p, when it names one.
+        const Cell_handle near = c.near != Candidate::kNoVertex ? cache.cell_near(dt, c.near) : Cell_handle();
+        const Vertex_handle v = cache.insert(dt, c.p, VertexInfo{next_id, c.kind}, near != Cell_handle() ? near : hint);
         if (v == Vertex_handle()) continue; // already a vertex
         ++next_id;
         hint = v->cell();

@@ -111,7 +111,23 @@ Vertex_handle FacetCache::insert(Delaunay& dt, const Point& p, VertexInfo info, 
                                 : dt.insert(p, lt, loc, li, lj);
     v->info() = info;
     inserted_.push_back(v);
+    if (by_id_ready_) {
+        if (by_id_.size() <= info.id) by_id_.resize(std::max<std::size_t>(std::size_t(info.id) + 1, 2 * by_id_.size()));
+        by_id_[info.id] = v;
+    }
     return v;
+}
+
+Cell_handle FacetCache::cell_near(const Delaunay& dt, std::uint32_t id)
+{
+    if (!by_id_ready_) {
+        for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+            if (by_id_.size() <= v->info().id) by_id_.resize(std::size_t(v->info().id) + 1);
+            by_id_[v->info().id] = v;
+        }
+        by_id_ready_ = true;
+    }
+    return id < by_id_.size() && by_id_[id] != Vertex_handle() ? by_id_[id]->cell() : Cell_handle();
 }
 
 void FacetCache::remove(Delaunay& dt, const std::vector<Vertex_handle>& vertices)
@@ -131,6 +147,7 @@ void FacetCache::remove(Delaunay& dt, const std::vector<Vertex_handle>& vertices
                 const Vertex_handle w = c->vertex(j);
                 if (w != v && !dt.is_infinite(w)) link.push_back(w);
             }
+        if (by_id_ready_ && v->info().id < by_id_.size()) by_id_[v->info().id] = Vertex_handle();
         dt.remove(v);
     }
     // A vertex removed later in the batch may be in an earlier one's link, or among the points

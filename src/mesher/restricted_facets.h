@@ -67,6 +67,13 @@ public:
     /// already a vertex.
     Vertex_handle insert(Delaunay& dt, const Point& p, VertexInfo info, Cell_handle hint = Cell_handle());
 
+    /// A cell of vertex \p id, where locating a point near that vertex may start; a null handle
+    /// when \p id is no vertex. The first call indexes every vertex of \p dt by id; insert() and
+    /// remove() keep the index after that. (A walk from the last inserted point took 7 us per
+    /// point, 0.8 s serially for the 109 k points N of a 128^3 protein; from a vertex near each
+    /// point, 0.14 s.)
+    Cell_handle cell_near(const Delaunay& dt, std::uint32_t id);
+
     /// Removes \p vertices from \p dt, in order, keeping the cache current: the records of the
     /// facets of each vertex's cells go (the facets through it vanish, the others of those
     /// cells border the re-triangulated hole, so their Voronoi edges change), and the next
@@ -174,6 +181,8 @@ private:
     // whose star changed since take_touched_vertices() was last called.
     std::vector<std::vector<StarFacet>> stars_;
     std::vector<Point> points_;
+    std::vector<Vertex_handle> by_id_; ///< cell_near()'s index, once by_id_ready_
+    bool by_id_ready_ = false;
     std::vector<std::uint32_t> touched_;
     void unstar(const FacetKey& key);
     void star(const Entry& e);

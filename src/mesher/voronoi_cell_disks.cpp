@@ -294,7 +294,7 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
             const Vec3d& w = *cert.farthest_point();
             const Point q(w[0], w[1], w[2]);
             found[i] = Candidate{q, PointKind::Topology, std::sqrt(CGAL::squared_distance(q, v->point())),
-                                 FacetKey{{v->info().id, 0, 0}}};
+                                 FacetKey{{v->info().id, 0, 0}}, v->info().id};
         }
     });
     std::vector<Candidate> out;

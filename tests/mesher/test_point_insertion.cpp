@@ -2,12 +2,15 @@
 // lies closer than half its spacing to a point accepted earlier in the batch (looked for in the
 // hash cells within min(2, ceil(r / cell)) of its own) or that is already a vertex
 // (src/mesher/point_insertion.h). Checked against that rule written out directly, on clusters
-// of candidates where both verdicts occur many times.
+// of candidates where both verdicts occur many times. The vertex a candidate names
+// (Candidate::near) only starts the walk to its point: the same vertices, ids and triangulation
+// as without it, with removed and far vertices named too.
 #include <catch2/catch.hpp>
 
 #include "mesher/point_insertion.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -99,4 +102,70 @@ TEST_CASE("point insertion: a candidate is skipped near an earlier accepted one 
         CHECK(dt.is_valid());
         CHECK(dt.number_of_vertices() == 125 + expected.size());
     }
+}
+
+TEST_CASE("point insertion: the vertex a candidate names only starts the walk", "[mesher][insertion]")
+{
+    // The same candidates inserted from the vertices they name (random ones, some far from the
+    // point, some removed before) and from the last inserted point: the same vertices, ids and
+    // triangulation.
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const auto grid = [](Delaunay& dt, std::uint32_t& id) {
+        for (int z = 0; z <= 5; ++z)
+            for (int y = 0; y <= 5; ++y)
+                for (int x = 0; x <= 5; ++x) dt.insert(Point(x, y, z))->info() = VertexInfo{id++, PointKind::Grid};
+    };
+    std::vector<Candidate> named, unnamed;
+    for (std::uint32_t i = 0; i < 2000; ++i) {
+        const Point p(5 * U(rng), 5 * U(rng), 5 * U(rng));
+        const FacetKey origin{{(i * 7919u) % 2000u, 0, 0}};
+        named.push_back({p, PointKind::Topology, 0.01, origin, std::uint32_t(U(rng) * 216)});
+        unnamed.push_back({p, PointKind::Topology, 0.01, origin});
+    }
+    Delaunay a, b;
+    std::uint32_t id_a = 0, id_b = 0;
+    grid(a, id_a);
+    grid(b, id_b);
+    FacetCache cache_a, cache_b;
+    // Index a's vertices, then remove three that candidates name: those start from elsewhere.
+    std::vector<Vertex_handle> gone;
+    for (auto v = a.finite_vertices_begin(); v != a.finite_vertices_end(); ++v)
+        if (v->info().id == 5 || v->info().id == 100 || v->info().id == 150) gone.push_back(v);
+    REQUIRE(cache_a.cell_near(a, 100) != Cell_handle());
+    cache_a.remove(a, gone);
+    cache_b.remove(b, [&] {
+        std::vector<Vertex_handle> g;
+        for (auto v = b.finite_vertices_begin(); v != b.finite_vertices_end(); ++v)
+            if (v->info().id == 5 || v->info().id == 100 || v->info().id == 150) g.push_back(v);
+        return g;
+    }());
+    CHECK(cache_a.cell_near(a, 100) == Cell_handle());
+    CHECK(cache_a.cell_near(a, 9999) == Cell_handle());
+
+    const InsertionResult ga = insert_candidates(a, cache_a, named, id_a, 0.25);
+    const InsertionResult gb = insert_candidates(b, cache_b, unnamed, id_b, 0.25);
+    REQUIRE(ga.inserted.size() == gb.inserted.size());
+    CHECK(ga.inserted.size() > 1500);
+    for (std::size_t i = 0; i < ga.inserted.size(); ++i) {
+        CHECK(ga.inserted[i]->point() == gb.inserted[i]->point());
+        CHECK(ga.inserted[i]->info().id == gb.inserted[i]->info().id);
+    }
+    // The index follows the insertions: an inserted point's cell has it as a vertex.
+    const Cell_handle c = cache_a.cell_near(a, ga.inserted.back()->info().id);
+    REQUIRE(c != Cell_handle());
+    CHECK(c->has_vertex(ga.inserted.back()));
+    const auto cells = [](const Delaunay& dt) {
+        std::vector<std::array<std::uint32_t, 4>> out;
+        for (auto cc = dt.finite_cells_begin(); cc != dt.finite_cells_end(); ++cc) {
+            std::array<std::uint32_t, 4> ids{cc->vertex(0)->info().id, cc->vertex(1)->info().id, cc->vertex(2)->info().id,
+                                             cc->vertex(3)->info().id};
+            std::sort(ids.begin(), ids.end());
+            out.push_back(ids);
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    CHECK(a.is_valid());
+    CHECK(cells(a) == cells(b));
 }
