@@ -14,7 +14,8 @@
 //                  perturb + exude
 //   VDB v2m        openvdb::tools::volumeToMesh(grid, points, tris, quads, isovalue), adaptivity 0
 //                  (no guarantees: the speed floor; uses TBB's default thread count, here 2)
-//   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion
+//   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion (its notes: the
+//                  same points with isodel's Delaunay traits, src/mesher/delaunay_traits.h)
 //                  (dt.insert(begin, end)), of isodel's own final point set E u G u N
 //                  (MeshResult::points of the "isodel 2thr" run of the same repetition, with
 //                  MeshOptions::keep_points). Only the insertion is timed.
@@ -35,6 +36,7 @@
 #include "octree/segment_walk.h"
 
 #include "bench_support.h"
+#include "mesher/delaunay_traits.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -270,6 +272,16 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         out.triangles = 0;
         out.extra = (long long)pts.size();
         out.ok = 1;
+        dt.clear(); // before the second triangulation: the row's peak memory is one triangulation's
+        // The same with isodel's own Delaunay traits (exact shortcuts for the in-sphere tests
+        // that are exactly 0 on grid points, src/mesher/delaunay_traits.h): what this row would
+        // take with isodel's predicates, shown in the notes.
+        const auto t1 = std::chrono::steady_clock::now();
+        CGAL::Delaunay_triangulation_3<isodel::mesher::DelaunayTraits> dtx;
+        dtx.insert(pts.begin(), pts.end());
+        char note[96];
+        std::snprintf(note, sizeof note, "with isodel's Delaunay traits %.3f s", seconds_since(t1));
+        copy_str(out.msg, sizeof out.msg, note);
     }
 }
 
@@ -501,7 +513,8 @@ int main(int argc, char** argv)
                 ::sysconf(_SC_NPROCESSORS_ONLN), reps, timeout);
     std::printf("isodel/this = median time of isodel 2thr (isodel+tets 2thr for Mesh_3 tets) / this row's; < 1: isodel faster.\n"
                 "DT(E+G+N) = CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insert, of isodel 2thr's final point\n"
-                "          set E u G u N (MeshResult::points).\n"
+                "          set E u G u N (MeshResult::points); its notes: the same with isodel's Delaunay traits\n"
+                "          (src/mesher/delaunay_traits.h), last repetition.\n"
                 "Peak MiB = the forked child's whole ru_maxrss (volume included). VDB volumeToMesh runs on TBB's default threads.\n");
 
     struct Totals {
@@ -538,7 +551,7 @@ int main(int argc, char** argv)
                     if (!s.last.msg.empty()) notes += (s.have ? "; phases: " : "ERROR: ") + s.last.msg;
                 } else if (m == DTM) {
                     if (s.last.extra >= 0) notes = "|P| " + std::to_string(s.last.extra);
-                    if (!s.have && !s.last.msg.empty()) notes += "ERROR: " + s.last.msg;
+                    if (!s.last.msg.empty()) notes += (s.have ? "; last repetition " : "ERROR: ") + s.last.msg;
                 } else if (m == MS || m == MT) {
                     if (!s.have) notes = "ERROR: " + s.last.msg;
                     else if (m == MT) notes += "; surface vertices " + std::to_string(s.last.extra);
