@@ -14,8 +14,8 @@
 //                  perturb + exude
 //   VDB v2m        openvdb::tools::volumeToMesh(grid, points, tris, quads, isovalue), adaptivity 0
 //                  (no guarantees: the speed floor; uses TBB's default thread count, here 2)
-//   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion (its notes: the
-//                  same points with isodel's Delaunay traits, src/mesher/delaunay_traits.h)
+//   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion
+//   DT traits      the same with isodel's Delaunay traits (src/mesher/delaunay_traits.h)
 //                  (dt.insert(begin, end)), of isodel's own final point set E u G u N
 //                  (MeshResult::points of the "isodel 2thr" run of the same repetition, with
 //                  MeshOptions::keep_points). Only the insertion is timed.
@@ -26,7 +26,7 @@
 // of "isodel 2thr" (of "isodel+tets" for the Mesh_3 tets row) divided by this row's median time.
 //
 //   compare_bench [--data DIR] [--filter S1,S2] [--all] [--eps-voxels 0.5,0.1] [--reps 3]
-//                 [--timeout SECONDS] [--methods i1,i2,ib,it,ms,mt,vdb,dt] [--blocks 32] [--quick]
+//                 [--timeout SECONDS] [--methods i1,i2,ib,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]
 // --quick = --reps 1 --eps-voxels 0.5 on 3 volumes (molmap protein, torus, skull).
 #include <isodel/mesh.h>
 #include <isodel/volume.h>
@@ -88,10 +88,10 @@ using DT = CGAL::Delaunay_triangulation_3<K>;
 using V3 = std::array<double, 3>;
 using Tri = std::array<std::int64_t, 3>;
 
-enum Method { I1, I2, IB, IT, MS, MT, VDB, DTM, NMETHODS };
-const char* kKey[NMETHODS] = {"i1", "i2", "ib", "it", "ms", "mt", "vdb", "dt"};
+enum Method { I1, I2, IB, IT, MS, MT, VDB, DTM, DTX, NMETHODS };
+const char* kKey[NMETHODS] = {"i1", "i2", "ib", "it", "ms", "mt", "vdb", "dt", "dtx"};
 const char* kLabel[NMETHODS] = {"isodel 1thr", "isodel 2thr", "isodel blocks 2thr", "isodel+tets 2thr", "Mesh_3 surf",
-                                "Mesh_3 tets", "VDB volumeToMesh", "DT(E+G+N)"};
+                                "Mesh_3 tets", "VDB volumeToMesh", "DT(E+G+N)", "DT(E+G+N) traits"};
 int g_block_voxels = 32; ///< --blocks: block size of the "isodel blocks" row
 
 /// What a child sends back (fixed size), followed for isodel 2thr by the vertices of M.
@@ -255,7 +255,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         out.ok = 1;
         return;
     }
-    if (m == DTM) {
+    if (m == DTM || m == DTX) {
         if (dt_input.empty()) {
             copy_str(out.msg, sizeof out.msg, "no isodel 2thr mesh in this repetition");
             return;
@@ -263,25 +263,21 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         std::vector<K::Point_3> pts;
         pts.reserve(dt_input.size());
         for (const auto& v : dt_input) pts.emplace_back(v[0], v[1], v[2]);
-        const auto t0 = std::chrono::steady_clock::now();
-        DT dt;
-        dt.insert(pts.begin(), pts.end());
-        out.secs = seconds_since(t0);
-        out.vertices = (long long)dt.number_of_vertices();
-        out.tets = (long long)dt.number_of_finite_cells();
+        // DT: CGAL's EPICK, the baseline. DTX: the same points with isodel's own
+        // Delaunay traits (src/mesher/delaunay_traits.h: exact shortcuts for the in-sphere tests
+        // that are exactly 0 on grid points), what isodel's triangulation of them costs.
+        const auto triangulate = [&](auto dt) {
+            const auto t0 = std::chrono::steady_clock::now();
+            dt.insert(pts.begin(), pts.end());
+            out.secs = seconds_since(t0);
+            out.vertices = (long long)dt.number_of_vertices();
+            out.tets = (long long)dt.number_of_finite_cells();
+        };
+        if (m == DTM) triangulate(DT());
+        else triangulate(CGAL::Delaunay_triangulation_3<isodel::mesher::DelaunayTraits>());
         out.triangles = 0;
         out.extra = (long long)pts.size();
         out.ok = 1;
-        dt.clear(); // before the second triangulation: the row's peak memory is one triangulation's
-        // The same with isodel's own Delaunay traits (exact shortcuts for the in-sphere tests
-        // that are exactly 0 on grid points, src/mesher/delaunay_traits.h): what this row would
-        // take with isodel's predicates, shown in the notes.
-        const auto t1 = std::chrono::steady_clock::now();
-        CGAL::Delaunay_triangulation_3<isodel::mesher::DelaunayTraits> dtx;
-        dtx.insert(pts.begin(), pts.end());
-        char note[96];
-        std::snprintf(note, sizeof note, "with isodel's Delaunay traits %.3f s", seconds_since(t1));
-        copy_str(out.msg, sizeof out.msg, note);
     }
 }
 
@@ -461,7 +457,7 @@ int main(int argc, char** argv)
         } else if (a == "--quick") quick = true;
         else {
             std::cerr << "usage: compare_bench [--data DIR] [--filter S1,S2] [--all] [--eps-voxels 0.5,0.1] [--reps 3]\n"
-                         "                     [--timeout SECONDS] [--methods i1,i2,ib,it,ms,mt,vdb,dt] [--blocks 32] [--quick]\n";
+                         "                     [--timeout SECONDS] [--methods i1,i2,ib,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]\n";
             return 2;
         }
     }
@@ -470,7 +466,7 @@ int main(int argc, char** argv)
         eps_list = {0.5};
         filters = {"protein/1hpv_molmap_6A_2A.vdb", "analytic/torus.vdb", "ct/skull_2.9.vdb"};
     }
-    if (enabled[DTM]) enabled[I2] = true; // the Delaunay row needs isodel 2thr's points
+    if (enabled[DTM] || enabled[DTX]) enabled[I2] = true; // the Delaunay rows need isodel 2thr's points
     openvdb::initialize(); // registers grid types only; no TBB work happens in this (forking) process
 
     std::ifstream in(data + "/manifest.json");
@@ -513,8 +509,8 @@ int main(int argc, char** argv)
                 ::sysconf(_SC_NPROCESSORS_ONLN), reps, timeout);
     std::printf("isodel/this = median time of isodel 2thr (isodel+tets 2thr for Mesh_3 tets) / this row's; < 1: isodel faster.\n"
                 "DT(E+G+N) = CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insert, of isodel 2thr's final point\n"
-                "          set E u G u N (MeshResult::points); its notes: the same with isodel's Delaunay traits\n"
-                "          (src/mesher/delaunay_traits.h), last repetition.\n"
+                "          set E u G u N (MeshResult::points). DT(E+G+N) traits = the same with isodel's Delaunay traits\n"
+                "          (src/mesher/delaunay_traits.h).\n"
                 "Peak MiB = the forked child's whole ru_maxrss (volume included). VDB volumeToMesh runs on TBB's default threads.\n");
 
     struct Totals {
@@ -549,9 +545,9 @@ int main(int argc, char** argv)
                 if (m == I1 || m == I2 || m == IB || m == IT) {
                     if (s.last.extra >= 0) notes += (notes.empty() ? "" : "; ") + std::string("|E+G+N| ") + std::to_string(s.last.extra);
                     if (!s.last.msg.empty()) notes += (s.have ? "; phases: " : "ERROR: ") + s.last.msg;
-                } else if (m == DTM) {
+                } else if (m == DTM || m == DTX) {
                     if (s.last.extra >= 0) notes = "|P| " + std::to_string(s.last.extra);
-                    if (!s.last.msg.empty()) notes += (s.have ? "; last repetition " : "ERROR: ") + s.last.msg;
+                    if (!s.have && !s.last.msg.empty()) notes += "ERROR: " + s.last.msg;
                 } else if (m == MS || m == MT) {
                     if (!s.have) notes = "ERROR: " + s.last.msg;
                     else if (m == MT) notes += "; surface vertices " + std::to_string(s.last.extra);
