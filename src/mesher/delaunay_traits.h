@@ -37,6 +37,8 @@ struct InSphereAfterFilter {
         int sign;
         if (geometry::exact_in_sphere_sign(xyz[0], xyz[1], xyz[2], xyz[3], xyz[4], sign))
             return CGAL::Oriented_side(sign);
+        // EPICK's whole predicate: its semi-static filter fails again (cheaply), then its
+        // interval and exact stages decide.
         return CGAL::Epick().side_of_oriented_sphere_3_object()(p, q, r, s, t);
     }
 
