@@ -15,10 +15,10 @@
 //   VDB v2m        openvdb::tools::volumeToMesh(grid, points, tris, quads, isovalue), adaptivity 0
 //                  (no guarantees: the speed floor; uses TBB's default thread count, here 2)
 //   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion
-//   DT traits      the same with isodel's Delaunay traits (src/mesher/delaunay_traits.h)
 //                  (dt.insert(begin, end)), of isodel's own final point set E u G u N
 //                  (MeshResult::points of the "isodel 2thr" run of the same repetition, with
 //                  MeshOptions::keep_points). Only the insertion is timed.
+//   DT traits      the same with isodel's Delaunay traits (src/mesher/delaunay_traits.h)
 //
 // Times are wall-clock (steady_clock) around the method only (the volume is read before the
 // clock starts), medians over --reps. Peak memory is the child's whole peak RSS (it includes the
