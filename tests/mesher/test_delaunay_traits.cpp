@@ -1,6 +1,7 @@
 // The mesher's Delaunay traits (src/mesher/delaunay_traits.h) answer an in-sphere test that
-// CGAL's filter cannot decide from the coordinates alone when the five points are corners of one
-// box. The answers must be EPICK's: on five lattice points at a time (cospherical in every
+// CGAL's filter cannot decide by a box-corner test, then in 320-bit integers
+// (geometry/exact_in_sphere, tested on its own in tests/geometry), before EPICK's evaluation.
+// The answers must be EPICK's: on five lattice points at a time (cospherical in every
 // cube, and often so across cubes too, where the shortcut must not answer) and with grid-edge
 // points among them, every sign equals EPICK's; and a triangulation built with the traits is
 // the one EPICK builds. The lattice spacing is not a power of two and the origin is off zero,
