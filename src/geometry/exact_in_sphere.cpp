@@ -14,12 +14,6 @@ using u128 = unsigned __int128;
 struct Int320 {
     std::uint64_t w[5]; // little-endian limbs
 
-    static Int320 from(i128 v)
-    {
-        const std::uint64_t ext = v < 0 ? ~std::uint64_t(0) : 0;
-        return {{std::uint64_t(u128(v)), std::uint64_t(u128(v) >> 64), ext, ext, ext}};
-    }
-
     friend Int320 operator+(const Int320& a, const Int320& b)
     {
         Int320 r;
