@@ -34,8 +34,10 @@
 // whole star is among them (a closed star: a tet mesh's link of an interior vertex is one
 // sphere), so no two blocks change the same tet or vertex, or read what another changes.
 // Vertices on a block's boundary stay; a second sweep over blocks shifted by half a side gives
-// most of them an interior. The blocks are a fixed function of the geometry and their results
-// are merged in block order, so the mesh does not depend on the thread count.
+// most of them an interior, and a last block around the bad tets still near a boundary (split
+// into its pieces that share no vertex) the rest. The blocks are a fixed function of the
+// geometry and their results are merged in block order, so the mesh does not depend on the
+// thread count.
 #include <isodel/surface_mesh.h>
 
 #include <cstddef>
@@ -46,6 +48,9 @@ struct TetImprovementParams {
     double target_deg = 15.0;   ///< work on tets whose smallest dihedral angle is below this
     int max_passes = 10;        ///< bound on the sweeps over the bad tets (per block)
     double block_size = 0;      ///< world units; 0: the whole mesh as one block, serially
+    /// The last, serial, block (tet_improvement_blocks.cpp) improved as its vertex-disjoint
+    /// pieces, concurrently: the same tets as one block (false, which tests compare against).
+    bool split_last_block = true;
 };
 
 struct TetImprovementStats {
@@ -53,6 +58,7 @@ struct TetImprovementStats {
     std::size_t vertices_moved = 0, vertices_removed = 0, flips_23 = 0;
     std::size_t edges_removed = 0; ///< edge removals (3-2 flips and rings of up to 7 tets)
     std::size_t vertices_inserted = 0; ///< new vertices next to slivers of M (insert_vertex)
+    std::size_t last_block_pieces = 0; ///< blocks the last block was improved as (split_last_block)
     int passes = 0;
 };
 

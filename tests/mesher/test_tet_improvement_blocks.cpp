@@ -68,3 +68,64 @@ TEST_CASE("tet improvement by blocks: valid, improving, and the same with 1 and 
         CHECK(one.stats.tets.tets_below_10deg * 2 < del.stats.tets.tets_below_10deg);
     }
 }
+
+namespace {
+
+/// The tets of \p m as their corners' coordinates (sorted, with the orientation's sign) and
+/// region, sorted: the mesh up to vertex numbering.
+std::vector<std::pair<std::array<std::array<double, 3>, 4>, int>> tets_by_position(const TetMesh& m)
+{
+    std::vector<std::pair<std::array<std::array<double, 3>, 4>, int>> out;
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+        std::array<std::array<double, 3>, 4> p;
+        for (int j = 0; j < 4; ++j) p[std::size_t(j)] = m.vertices[std::size_t(m.tets[t][std::size_t(j)])];
+        const auto d = [&](int j, int k) { return p[std::size_t(j)][std::size_t(k)] - p[0][std::size_t(k)]; };
+        const double vol = d(1, 0) * (d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)) - d(1, 1) * (d(2, 0) * d(3, 2) - d(2, 2) * d(3, 0)) +
+                           d(1, 2) * (d(2, 0) * d(3, 1) - d(2, 1) * d(3, 0));
+        std::sort(p.begin(), p.end());
+        out.push_back({p, 4 * m.tet_region[t] + (vol > 0 ? 1 : vol < 0 ? -1 : 0)});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("tet improvement by blocks: the last block's pieces improved apart give the tets of one block",
+          "[mesher][volume_mesh][tet_improvement]")
+{
+    // Two spheres far apart: the bad tets left near block boundaries form a piece around each.
+    const auto grid = testing::make_grid(34, 0.5, openvdb::Vec3d(0.3, -1.0, 0.7), [](const openvdb::Vec3d& x) {
+        return std::max(testing::sphere_f(x, openvdb::Vec3d(5.37, 5.11, 5.53), 3.7),
+                        testing::sphere_f(x, openvdb::Vec3d(12.4, 10.6, 11.9), 3.3));
+    });
+    MeshOptions mo;
+    mo.isovalue = 0.0;
+    mo.inside = Inside::Above;
+    mo.eps_voxels = 0.5;
+    mo.tets = TetRegion::Both;
+    mo.improve_tets = false;
+    const MeshResult del = mesh_isosurface(*grid, mo);
+    testing::require_volume_mesh(del, TetRegion::Both, "Delaunay");
+    const std::size_t nm = del.surface.vertices.size();
+
+    for (const double block : {2.5, 3.0}) {
+        INFO("blocks of " << block << " (" << block / 0.5 << " voxels)");
+        TetImprovementParams params;
+        params.block_size = block;
+        TetMesh apart = del.tets, whole = del.tets;
+        const TetImprovementStats sa = improve_tets(apart, nm, params);
+        params.split_last_block = false;
+        const TetImprovementStats sw = improve_tets(whole, nm, params);
+        INFO("last block: " << sa.last_block_pieces << " pieces");
+        CHECK(sa.last_block_pieces > 1);
+        CHECK(sw.last_block_pieces == 1);
+        CHECK(sa.vertices_inserted + sa.vertices_removed + sa.vertices_moved > 0);
+        CHECK(apart.vertices.size() == whole.vertices.size());
+        CHECK(apart.tets.size() == whole.tets.size());
+        CHECK(tets_by_position(apart) == tets_by_position(whole));
+        CHECK(sa.vertices_moved == sw.vertices_moved);
+        CHECK(sa.vertices_inserted == sw.vertices_inserted);
+        CHECK(sa.vertices_removed == sw.vertices_removed);
+    }
+}
