@@ -10,6 +10,9 @@
 #include <isodel/surface_mesh.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <string>
 #include <cstring>
 #include <iomanip>
 #include <limits>
@@ -17,6 +20,50 @@
 
 namespace isodel {
 namespace {
+
+/// Text output through a buffer, numbers formatted by std::to_chars: iostream's << formatted the
+/// 3 M lines of a 128^3 protein's inside tets in ~2 s. Doubles as printf's %.17g (to_chars'
+/// general format at that precision is specified so), integers in decimal: the same bytes as
+/// << with setprecision(17).
+class TextOut {
+public:
+    explicit TextOut(std::ostream& out) : out_(out) { buf_.reserve(kFlush + 512); }
+    ~TextOut() { flush(); }
+    TextOut& operator<<(double v) { return put_chars([&](char* b, char* e) { return std::to_chars(b, e, v, std::chars_format::general, 17); }); }
+    TextOut& operator<<(std::int64_t v) { return put_chars([&](char* b, char* e) { return std::to_chars(b, e, v); }); }
+    TextOut& operator<<(std::int32_t v) { return *this << std::int64_t(v); }
+    TextOut& operator<<(std::size_t v) { return put_chars([&](char* b, char* e) { return std::to_chars(b, e, v); }); }
+    TextOut& operator<<(char c)
+    {
+        buf_.push_back(c);
+        return *this;
+    }
+    TextOut& operator<<(const char* s)
+    {
+        buf_.append(s);
+        if (buf_.size() >= kFlush) flush();
+        return *this;
+    }
+    void flush()
+    {
+        out_.write(buf_.data(), std::streamsize(buf_.size()));
+        buf_.clear();
+    }
+
+private:
+    static constexpr std::size_t kFlush = std::size_t(1) << 20;
+    template <class F>
+    TextOut& put_chars(F&& format)
+    {
+        char b[32];
+        const std::to_chars_result r = format(b, b + sizeof b);
+        buf_.append(b, r.ptr);
+        if (buf_.size() >= kFlush) flush();
+        return *this;
+    }
+    std::ostream& out_;
+    std::string buf_;
+};
 
 template <typename T>
 void put(std::ostream& out, T v)
@@ -26,9 +73,10 @@ void put(std::ostream& out, T v)
     out.write(b, sizeof(T));
 }
 
-void write_medit(std::ostream& out, const TetMesh& m)
+void write_medit(std::ostream& stream, const TetMesh& m)
 {
-    out << "MeshVersionFormatted 2\nDimension 3\n" << std::setprecision(17);
+    TextOut out(stream);
+    out << "MeshVersionFormatted 2\nDimension 3\n";
     out << "Vertices\n" << m.vertices.size() << '\n';
     for (const auto& v : m.vertices) out << v[0] << ' ' << v[1] << ' ' << v[2] << " 0\n";
     out << "Triangles\n" << m.triangles.size() << '\n';
@@ -36,7 +84,7 @@ void write_medit(std::ostream& out, const TetMesh& m)
     out << "Tetrahedra\n" << m.tets.size() << '\n';
     for (std::size_t i = 0; i < m.tets.size(); ++i) {
         const auto& t = m.tets[i];
-        out << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << ' ' << t[3] + 1 << ' ' << m.tet_region[i] << '\n';
+        out << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << ' ' << t[3] + 1 << ' ' << std::int32_t(m.tet_region[i]) << '\n';
     }
     out << "End\n";
 }
@@ -75,7 +123,7 @@ void write_vtu(std::ostream& out, const TetMesh& m)
     out << "\n  </AppendedData>\n</VTKFile>\n";
 }
 
-void write_msh(std::ostream& out, const TetMesh& m)
+void write_msh(std::ostream& stream, const TetMesh& m)
 {
     // Gmsh 4.1: one surface entity (tag 1, physical 3 "surface") and one volume entity per region
     // present (tag = physical = region: 1 "inside", 2 "outside"); all nodes in the first volume.
@@ -92,35 +140,35 @@ void write_msh(std::ostream& out, const TetMesh& m)
     }
     std::ostringstream bbox;
     bbox << std::setprecision(17) << lo[0] << ' ' << lo[1] << ' ' << lo[2] << ' ' << hi[0] << ' ' << hi[1] << ' ' << hi[2];
+    TextOut out(stream);
     const int nvol = int(has[1]) + int(has[2]);
     const bool has_tri = !m.triangles.empty();
-    out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << nvol + int(has_tri) << '\n';
+    out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << std::int32_t(nvol + int(has_tri)) << '\n';
     if (has_tri) out << "2 3 \"surface\"\n";
     if (has[1]) out << "3 1 \"inside\"\n";
     if (has[2]) out << "3 2 \"outside\"\n";
-    out << "$EndPhysicalNames\n$Entities\n0 0 " << int(has_tri) << ' ' << nvol << '\n';
-    if (has_tri) out << "1 " << bbox.str() << " 1 3 0\n";
-    for (int r = 1; r <= 2; ++r)
-        if (has[r]) out << r << ' ' << bbox.str() << " 1 " << r << ' ' << (has_tri ? "1 1" : "0") << '\n';
+    out << "$EndPhysicalNames\n$Entities\n0 0 " << std::int32_t(has_tri) << ' ' << std::int32_t(nvol) << '\n';
+    if (has_tri) out << "1 " << bbox.str().c_str() << " 1 3 0\n";
+    for (std::int32_t r = 1; r <= 2; ++r)
+        if (has[r]) out << r << ' ' << bbox.str().c_str() << " 1 " << r << ' ' << (has_tri ? "1 1" : "0") << '\n';
     out << "$EndEntities\n";
     const int node_entity = has[1] ? 1 : 2;
     const std::size_t nv = m.vertices.size();
-    out << "$Nodes\n1 " << nv << " 1 " << nv << '\n' << (nvol ? 3 : 2) << ' ' << (nvol ? node_entity : 1) << " 0 "
+    out << "$Nodes\n1 " << nv << " 1 " << nv << '\n' << std::int32_t(nvol ? 3 : 2) << ' ' << std::int32_t(nvol ? node_entity : 1) << " 0 "
         << nv << '\n';
     for (std::size_t i = 1; i <= nv; ++i) out << i << '\n';
-    out << std::setprecision(17);
     for (const auto& v : m.vertices) out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
     out << "$EndNodes\n";
     const std::size_t ne = m.triangles.size() + m.tets.size();
-    out << "$Elements\n" << int(has_tri) + nvol << ' ' << ne << " 1 " << ne << '\n';
+    out << "$Elements\n" << std::int32_t(int(has_tri) + nvol) << ' ' << ne << " 1 " << ne << '\n';
     std::size_t tag = 1;
     if (has_tri) {
         out << "2 1 2 " << m.triangles.size() << '\n';
         for (const auto& t : m.triangles) out << tag++ << ' ' << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
     }
-    for (int r = 1; r <= 2; ++r) {
+    for (std::int32_t r = 1; r <= 2; ++r) {
         if (!has[r]) continue;
-        out << "3 " << r << " 4 " << std::count(m.tet_region.begin(), m.tet_region.end(), r) << '\n';
+        out << "3 " << r << " 4 " << std::int64_t(std::count(m.tet_region.begin(), m.tet_region.end(), r)) << '\n';
         for (std::size_t i = 0; i < m.tets.size(); ++i) {
             if (m.tet_region[i] != r) continue;
             const auto& t = m.tets[i];

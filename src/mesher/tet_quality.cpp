@@ -1,7 +1,12 @@
 #include "mesher/tet_quality.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace isodel::mesher {
 namespace {
@@ -34,21 +39,22 @@ double enclosed_volume(const SurfaceMesh& mesh)
     return v;
 }
 
-void measure_tet_quality(const TetMesh& mesh, std::size_t surface_vertices, TetStats& st)
+namespace {
+
+/// What measure_tet_quality() gathers over a run of tets.
+struct QualityPart {
+    std::size_t tets_inside = 0, tets_outside = 0, tets_touching_surface = 0, tets_below_10deg = 0;
+    double volume_inside = 0, volume_outside = 0;
+    double min_dihedral_deg = 180, max_dihedral_deg = 0, max_radius_edge = 0;
+    double min_dihedral_deg_off_surface = 180, max_radius_edge_off_surface = 0;
+    std::array<std::size_t, 18> histogram{};
+};
+
+void measure_tets(const TetMesh& mesh, std::size_t surface_vertices, std::size_t begin, std::size_t end, QualityPart& st)
 {
-    st.vertices = mesh.vertices.size();
-    st.tets_inside = st.tets_outside = 0;
-    st.volume_inside = st.volume_outside = 0;
-    st.min_dihedral_deg = mesh.tets.empty() ? 0 : 180;
-    st.max_dihedral_deg = 0;
-    st.max_radius_edge = 0;
-    st.min_dihedral_deg_off_surface = 180;
-    st.max_radius_edge_off_surface = 0;
-    st.tets_touching_surface = st.tets_below_10deg = 0;
-    st.dihedral_histogram.assign(18, 0);
     static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                                          {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (std::size_t t = begin; t < end; ++t) {
         const V3* p[4];
         for (int j = 0; j < 4; ++j) p[j] = &mesh.vertices[std::size_t(mesh.tets[t][j])];
         const double vol = signed_tet_volume(*p[0], *p[1], *p[2], *p[3]);
@@ -67,7 +73,7 @@ void measure_tet_quality(const TetMesh& mesh, std::size_t surface_vertices, TetS
             tet_min = std::min(tet_min, deg);
             st.min_dihedral_deg = std::min(st.min_dihedral_deg, deg);
             st.max_dihedral_deg = std::max(st.max_dihedral_deg, deg);
-            st.dihedral_histogram[std::min<std::size_t>(17, std::size_t(deg / 10.0))]++;
+            st.histogram[std::min<std::size_t>(17, std::size_t(deg / 10.0))]++;
         }
         // Circumradius from the vertex-relative formula (Shewchuk, "Lecture notes on Delaunay
         // mesh generation", Sec. 1.10): |a|^2 (b x c) + |b|^2 (c x a) + |c|^2 (a x b) / (2 a.(b x c)).
@@ -88,6 +94,48 @@ void measure_tet_quality(const TetMesh& mesh, std::size_t surface_vertices, TetS
             st.max_radius_edge_off_surface = std::max(st.max_radius_edge_off_surface, re);
         }
     }
+}
+
+} // namespace
+
+void measure_tet_quality(const TetMesh& mesh, std::size_t surface_vertices, TetStats& st)
+{
+    // In parallel over fixed runs of tets, folded in run order: the volume sums round the same
+    // way whatever the thread count. (Serially, 2 s for the 2.6 M tets of a 128^3 protein.)
+    constexpr std::size_t kRun = std::size_t(1) << 15;
+    std::vector<QualityPart> parts((mesh.tets.size() + kRun - 1) / kRun);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, parts.size(), 1), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+            measure_tets(mesh, surface_vertices, i * kRun, std::min(mesh.tets.size(), (i + 1) * kRun), parts[i]);
+    });
+    QualityPart all;
+    for (const QualityPart& p : parts) {
+        all.tets_inside += p.tets_inside;
+        all.tets_outside += p.tets_outside;
+        all.tets_touching_surface += p.tets_touching_surface;
+        all.tets_below_10deg += p.tets_below_10deg;
+        all.volume_inside += p.volume_inside;
+        all.volume_outside += p.volume_outside;
+        all.min_dihedral_deg = std::min(all.min_dihedral_deg, p.min_dihedral_deg);
+        all.max_dihedral_deg = std::max(all.max_dihedral_deg, p.max_dihedral_deg);
+        all.max_radius_edge = std::max(all.max_radius_edge, p.max_radius_edge);
+        all.min_dihedral_deg_off_surface = std::min(all.min_dihedral_deg_off_surface, p.min_dihedral_deg_off_surface);
+        all.max_radius_edge_off_surface = std::max(all.max_radius_edge_off_surface, p.max_radius_edge_off_surface);
+        for (std::size_t b = 0; b < all.histogram.size(); ++b) all.histogram[b] += p.histogram[b];
+    }
+    st.vertices = mesh.vertices.size();
+    st.tets_inside = all.tets_inside;
+    st.tets_outside = all.tets_outside;
+    st.volume_inside = all.volume_inside;
+    st.volume_outside = all.volume_outside;
+    st.min_dihedral_deg = mesh.tets.empty() ? 0 : all.min_dihedral_deg;
+    st.max_dihedral_deg = all.max_dihedral_deg;
+    st.max_radius_edge = all.max_radius_edge;
+    st.min_dihedral_deg_off_surface = all.min_dihedral_deg_off_surface;
+    st.max_radius_edge_off_surface = all.max_radius_edge_off_surface;
+    st.tets_touching_surface = all.tets_touching_surface;
+    st.tets_below_10deg = all.tets_below_10deg;
+    st.dihedral_histogram.assign(all.histogram.begin(), all.histogram.end());
 }
 
 } // namespace isodel::mesher

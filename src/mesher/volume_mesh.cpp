@@ -12,6 +12,8 @@
 
 #include <CGAL/spatial_sort.h>
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <chrono>
 #include <sstream>
@@ -52,14 +54,15 @@ void canonical_order(TetMesh& mesh)
                 }
         if (odd) std::swap(a[2], a[3]);
         tets.push_back({a, std::int8_t(mesh.tet_region[t])});
-}
-std::sort(tets.begin(), tets.end(), [](const Tet& x, const Tet& y) { return x.v < y.v; });
-mesh.tets.clear();
-mesh.tet_region.clear();
-for (const auto& t : tets) {
-    mesh.tets.push_back(t.v);
-    mesh.tet_region.push_back(t.region);
-}
+    }
+    // The tets' vertex sets differ, so the order is total and any sort gives it.
+    tbb::parallel_sort(tets.begin(), tets.end(), [](const Tet& x, const Tet& y) { return x.v < y.v; });
+    mesh.tets.clear();
+    mesh.tet_region.clear();
+    for (const auto& t : tets) {
+        mesh.tets.push_back(t.v);
+        mesh.tet_region.push_back(t.region);
+    }
 }
 
 } // namespace
