@@ -2,7 +2,8 @@
 // concurrently and merged must give a valid mesh (positive tets, M and its triangles kept, the
 // inside region bounded by M, volumes unchanged), the same one with 1 and 2 threads, and still
 // improve it -- also with blocks of a few voxels, where most tets have a vertex on a block's
-// boundary and vertex insertions and collapses from many blocks are merged at once.
+// boundary and vertex insertions and collapses from many blocks are merged at once. The last
+// block, improved as its pieces that share no vertex, must give the tets it gives in one piece.
 #include <catch2/catch.hpp>
 
 #include "mesher_test_support.h"
