@@ -108,34 +108,32 @@ void measure_tet_quality(const TetMesh& mesh, std::size_t surface_vertices, TetS
         for (std::size_t i = r.begin(); i != r.end(); ++i)
             measure_tets(mesh, surface_vertices, i * kRun, std::min(mesh.tets.size(), (i + 1) * kRun), parts[i]);
     });
-    QualityPart all;
-    for (const QualityPart& p : parts) {
-        all.tets_inside += p.tets_inside;
-        all.tets_outside += p.tets_outside;
-        all.tets_touching_surface += p.tets_touching_surface;
-        all.tets_below_10deg += p.tets_below_10deg;
-        all.volume_inside += p.volume_inside;
-        all.volume_outside += p.volume_outside;
-        all.min_dihedral_deg = std::min(all.min_dihedral_deg, p.min_dihedral_deg);
-        all.max_dihedral_deg = std::max(all.max_dihedral_deg, p.max_dihedral_deg);
-        all.max_radius_edge = std::max(all.max_radius_edge, p.max_radius_edge);
-        all.min_dihedral_deg_off_surface = std::min(all.min_dihedral_deg_off_surface, p.min_dihedral_deg_off_surface);
-        all.max_radius_edge_off_surface = std::max(all.max_radius_edge_off_surface, p.max_radius_edge_off_surface);
-        for (std::size_t b = 0; b < all.histogram.size(); ++b) all.histogram[b] += p.histogram[b];
-    }
+    // Folded straight into st, from the identities of each statistic (a part's own defaults).
+    const QualityPart none;
     st.vertices = mesh.vertices.size();
-    st.tets_inside = all.tets_inside;
-    st.tets_outside = all.tets_outside;
-    st.volume_inside = all.volume_inside;
-    st.volume_outside = all.volume_outside;
-    st.min_dihedral_deg = mesh.tets.empty() ? 0 : all.min_dihedral_deg;
-    st.max_dihedral_deg = all.max_dihedral_deg;
-    st.max_radius_edge = all.max_radius_edge;
-    st.min_dihedral_deg_off_surface = all.min_dihedral_deg_off_surface;
-    st.max_radius_edge_off_surface = all.max_radius_edge_off_surface;
-    st.tets_touching_surface = all.tets_touching_surface;
-    st.tets_below_10deg = all.tets_below_10deg;
-    st.dihedral_histogram.assign(all.histogram.begin(), all.histogram.end());
+    st.tets_inside = st.tets_outside = st.tets_touching_surface = st.tets_below_10deg = 0;
+    st.volume_inside = st.volume_outside = 0;
+    st.min_dihedral_deg = none.min_dihedral_deg;
+    st.max_dihedral_deg = none.max_dihedral_deg;
+    st.max_radius_edge = none.max_radius_edge;
+    st.min_dihedral_deg_off_surface = none.min_dihedral_deg_off_surface;
+    st.max_radius_edge_off_surface = none.max_radius_edge_off_surface;
+    st.dihedral_histogram.assign(none.histogram.size(), 0);
+    for (const QualityPart& p : parts) {
+        st.tets_inside += p.tets_inside;
+        st.tets_outside += p.tets_outside;
+        st.tets_touching_surface += p.tets_touching_surface;
+        st.tets_below_10deg += p.tets_below_10deg;
+        st.volume_inside += p.volume_inside;
+        st.volume_outside += p.volume_outside;
+        st.min_dihedral_deg = std::min(st.min_dihedral_deg, p.min_dihedral_deg);
+        st.max_dihedral_deg = std::max(st.max_dihedral_deg, p.max_dihedral_deg);
+        st.max_radius_edge = std::max(st.max_radius_edge, p.max_radius_edge);
+        st.min_dihedral_deg_off_surface = std::min(st.min_dihedral_deg_off_surface, p.min_dihedral_deg_off_surface);
+        st.max_radius_edge_off_surface = std::max(st.max_radius_edge_off_surface, p.max_radius_edge_off_surface);
+        for (std::size_t b = 0; b < p.histogram.size(); ++b) st.dihedral_histogram[b] += p.histogram[b];
+    }
+    if (mesh.tets.empty()) st.min_dihedral_deg = 0;
 }
 
 } // namespace isodel::mesher

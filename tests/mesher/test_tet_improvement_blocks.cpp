@@ -19,6 +19,43 @@
 using namespace isodel;
 using namespace isodel::mesher;
 
+namespace {
+
+/// The level set {F = 0} (inside above) at eps 0.5 voxel with the Delaunay tets of both
+/// regions, not improved, checked valid.
+MeshResult delaunay_tets(const openvdb::FloatGrid& grid)
+{
+    MeshOptions mo;
+    mo.isovalue = 0.0;
+    mo.inside = Inside::Above;
+    mo.eps_voxels = 0.5;
+    mo.tets = TetRegion::Both;
+    mo.improve_tets = false;
+    MeshResult del = mesh_isosurface(grid, mo);
+    testing::require_volume_mesh(del, TetRegion::Both, "Delaunay");
+    return del;
+}
+
+/// The tets of \p m as their corners' coordinates (sorted, with the orientation's sign) and
+/// region, sorted: the mesh up to vertex numbering.
+std::vector<std::pair<std::array<std::array<double, 3>, 4>, int>> tets_by_position(const TetMesh& m)
+{
+    std::vector<std::pair<std::array<std::array<double, 3>, 4>, int>> out;
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+        std::array<std::array<double, 3>, 4> p;
+        for (int j = 0; j < 4; ++j) p[std::size_t(j)] = m.vertices[std::size_t(m.tets[t][std::size_t(j)])];
+        const auto d = [&](int j, int k) { return p[std::size_t(j)][std::size_t(k)] - p[0][std::size_t(k)]; };
+        const double vol = d(1, 0) * (d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)) - d(1, 1) * (d(2, 0) * d(3, 2) - d(2, 2) * d(3, 0)) +
+                           d(1, 2) * (d(2, 0) * d(3, 1) - d(2, 1) * d(3, 0));
+        std::sort(p.begin(), p.end());
+        out.push_back({p, 4 * m.tet_region[t] + (vol > 0 ? 1 : vol < 0 ? -1 : 0)});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+} // namespace
+
 TEST_CASE("tet improvement by blocks: valid, improving, and the same with 1 and 2 threads",
           "[mesher][volume_mesh][tet_improvement]")
 {
@@ -26,14 +63,7 @@ TEST_CASE("tet improvement by blocks: valid, improving, and the same with 1 and 
     const auto grid = testing::make_grid(26, 0.5, openvdb::Vec3d(1.0, -2.0, 0.5), [](const openvdb::Vec3d& x) {
         return testing::sphere_f(x, openvdb::Vec3d(12.37, 12.11, 12.53), 7.2);
     });
-    MeshOptions mo;
-    mo.isovalue = 0.0;
-    mo.inside = Inside::Above;
-    mo.eps_voxels = 0.5;
-    mo.tets = TetRegion::Both;
-    mo.improve_tets = false;
-    const MeshResult del = mesh_isosurface(*grid, mo);
-    testing::require_volume_mesh(del, TetRegion::Both, "Delaunay");
+    const MeshResult del = delaunay_tets(*grid);
     const std::size_t nm = del.surface.vertices.size();
 
     for (const double block : {1.0, 2.5, 8.0}) {
@@ -70,28 +100,6 @@ TEST_CASE("tet improvement by blocks: valid, improving, and the same with 1 and 
     }
 }
 
-namespace {
-
-/// The tets of \p m as their corners' coordinates (sorted, with the orientation's sign) and
-/// region, sorted: the mesh up to vertex numbering.
-std::vector<std::pair<std::array<std::array<double, 3>, 4>, int>> tets_by_position(const TetMesh& m)
-{
-    std::vector<std::pair<std::array<std::array<double, 3>, 4>, int>> out;
-    for (std::size_t t = 0; t < m.tets.size(); ++t) {
-        std::array<std::array<double, 3>, 4> p;
-        for (int j = 0; j < 4; ++j) p[std::size_t(j)] = m.vertices[std::size_t(m.tets[t][std::size_t(j)])];
-        const auto d = [&](int j, int k) { return p[std::size_t(j)][std::size_t(k)] - p[0][std::size_t(k)]; };
-        const double vol = d(1, 0) * (d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)) - d(1, 1) * (d(2, 0) * d(3, 2) - d(2, 2) * d(3, 0)) +
-                           d(1, 2) * (d(2, 0) * d(3, 1) - d(2, 1) * d(3, 0));
-        std::sort(p.begin(), p.end());
-        out.push_back({p, 4 * m.tet_region[t] + (vol > 0 ? 1 : vol < 0 ? -1 : 0)});
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
-} // namespace
-
 TEST_CASE("tet improvement by blocks: the last block's pieces improved apart give the tets of one block",
           "[mesher][volume_mesh][tet_improvement]")
 {
@@ -100,14 +108,7 @@ TEST_CASE("tet improvement by blocks: the last block's pieces improved apart giv
         return std::max(testing::sphere_f(x, openvdb::Vec3d(5.37, 5.11, 5.53), 3.7),
                         testing::sphere_f(x, openvdb::Vec3d(12.4, 10.6, 11.9), 3.3));
     });
-    MeshOptions mo;
-    mo.isovalue = 0.0;
-    mo.inside = Inside::Above;
-    mo.eps_voxels = 0.5;
-    mo.tets = TetRegion::Both;
-    mo.improve_tets = false;
-    const MeshResult del = mesh_isosurface(*grid, mo);
-    testing::require_volume_mesh(del, TetRegion::Both, "Delaunay");
+    const MeshResult del = delaunay_tets(*grid);
     const std::size_t nm = del.surface.vertices.size();
 
     for (const double block : {2.5, 3.0}) {
