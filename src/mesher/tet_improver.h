@@ -301,6 +301,9 @@ private:
     // insert_vertex()'s "already read" marks: equal to read_stamp_ when read by this attempt.
     std::uint32_t read_stamp_ = 0;
     std::vector<std::uint32_t> tet_read_, vertex_read_;
+    // cavity_for()'s membership marks: equal to cavity_stamp_ for the tets of the current cavity.
+    mutable std::uint32_t cavity_stamp_ = 0;
+    mutable std::vector<std::uint32_t> in_cavity_;
     mutable std::vector<std::uint32_t> free_at_;
     mutable std::vector<char> free_;
 };
