@@ -20,6 +20,12 @@
 // cache concurrently: the first to claim it writes it, and readers take it only once it is
 // published (acquire/release), others compute it themselves meanwhile (the same bits: the
 // computation depends only on the cell's vertices).
+//
+// The region label and restricted sides (region_labels.h), two bytes also in the padding:
+// written by the inside/outside flood fill of DELVOLMESH over a triangulation that no longer
+// changes, and read right after it. In the cell, the fill follows neighbour pointers only; with
+// the labels in an array, every step had to find a cell's index from its address (1.9 s of
+// the 128^3 protein's tets phase).
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 
 #include <atomic>
@@ -52,6 +58,8 @@ public:
     {
         Cb::operator=(o);
         marks_ = 0;
+        region_ = 0;
+        restricted_sides_ = 0;
         cc_state_.store(kEmpty, std::memory_order_relaxed);
         return *this;
     }
@@ -79,10 +87,21 @@ public:
         return p;
     }
 
+    /// The region of the cell (region_labels.h): 0 not labelled, 1 inside, 2 outside.
+    std::int8_t region_label() const { return region_; }
+    void set_region_label(std::int8_t l) { region_ = l; }
+    /// Whether side \p i (the facet opposite vertex i) is a facet of M, as set by
+    /// set_restricted_sides() for the flood fill.
+    bool restricted_side(int i) const { return (restricted_sides_ >> i) & 1u; }
+    void set_restricted_sides(std::uint8_t bits) { restricted_sides_ = bits; }
+    void add_restricted_side(int i) { restricted_sides_ = std::uint8_t(restricted_sides_ | (1u << i)); }
+
 private:
     static constexpr std::uint8_t kEmpty = 0, kWriting = 1, kReady = 2;
     mutable std::uint8_t marks_ = 0;
     mutable std::atomic<std::uint8_t> cc_state_{kEmpty};
+    std::int8_t region_ = 0;
+    std::uint8_t restricted_sides_ = 0;
     mutable double cc_[3] = {0, 0, 0};
 };
 

@@ -13,40 +13,11 @@
 #include "mesher/delaunay.h"
 #include "mesher/restricted_facets.h"
 
-#include <cstdint>
-#include <vector>
-
 namespace isodel::mesher {
 
-/// Dense indices 0..n-1 of the triangulation's cells (the infinite ones too), in container
-/// order. CGAL's Compact_container::index() walks the container's list of blocks, which grows as
-/// the square root of the number of cells: ~1000 comparisons per call for a few million cells.
-/// Here the cells' addresses form runs of consecutive slots, found once, and a lookup is a
-/// binary search over them. Valid until the triangulation changes.
-class CellIndex {
-public:
-    explicit CellIndex(const Delaunay& dt);
-    std::size_t operator()(Cell_handle c) const;
-    std::size_t size() const { return size_; }
-
-private:
-    struct Run {
-        std::uintptr_t first; ///< address of the run's first cell
-        std::size_t begin;    ///< its index
-        std::size_t length;   ///< cells in the run
-    };
-    std::vector<Run> runs_; ///< sorted by address
-    std::size_t size_ = 0;
-};
-
-/// Labels of the cells: 1 inside, 2 outside (the infinite cells too).
-struct RegionLabels {
-    CellIndex index;
-    std::vector<std::int8_t> label; ///< by index(cell)
-    std::int8_t operator()(Cell_handle c) const { return label[index(c)]; }
-};
-
+/// Labels every cell of \p dt, the infinite ones too: afterwards Cell::region_label() is 1
+/// inside M and 2 outside (cell_base.h keeps the label in the cell). Valid until \p dt changes.
 /// \throw GuaranteeViolated the restricted facets do not bound a region
-RegionLabels region_labels(const Delaunay& dt, const FacetCache& cache);
+void label_regions(Delaunay& dt, const FacetCache& cache);
 
 } // namespace isodel::mesher

@@ -143,7 +143,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     lap("crowding_points");
 
     // 4. Inside/outside labels consistent with M (region_labels.h).
-    const RegionLabels label = region_labels(dt, cache);
+    label_regions(dt, cache);
     lap("region_labels");
 
     // 5. Numbering: M's vertices first, in surface.vertices order (extract_surface sorts them by
@@ -163,7 +163,7 @@ TetMesh build_volume_mesh(Delaunay& dt, FacetCache& cache, const octree::SampleF
     std::vector<Vertex_handle> other(*params.next_id); // the other kept vertices, by id
     std::vector<std::pair<std::array<Vertex_handle, 4>, std::int8_t>> kept;
     for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-        const std::int8_t l = label(Cell_handle(c));
+        const std::int8_t l = c->region_label();
         if (!(l == 1 ? keep_in : keep_out)) continue;
         kept.push_back({{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, l});
         for (int j = 0; j < 4; ++j)
