@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 using namespace isodel::mesher;
@@ -64,6 +65,24 @@ TEST_CASE("vertex star: the cells around each vertex, as CGAL's incident_cells f
         std::uniform_real_distribution<double> u(0.3, 5.2);
         for (int i = 0; i < 200; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
         const Delaunay dt(pts.begin(), pts.end());
+        require_same_stars(dt);
+    }
+    SECTION("hubs: vertices with thousands of cells (the per-thread set grows past its first size)")
+    {
+        // Points on two spheres around two centres: each centre's star is a cone over its
+        // sphere's hull, ~2 cells per sphere point.
+        std::mt19937 rng(5);
+        std::normal_distribution<double> n(0, 1);
+        std::vector<Point> pts{Point(0, 0, 0), Point(10, 0, 0)};
+        for (int k = 0; k < 2; ++k)
+            for (int i = 0; i < (k == 0 ? 1500 : 90); ++i) {
+                const double x = n(rng), y = n(rng), z = n(rng), r = std::sqrt(x * x + y * y + z * z);
+                pts.emplace_back(10 * k + x / r, y / r, z / r);
+            }
+        const Delaunay dt(pts.begin(), pts.end());
+        std::vector<Cell_handle> hub;
+        gather_star(dt.nearest_vertex(Point(0, 0, 0)), hub);
+        REQUIRE(hub.size() > 2000);
         require_same_stars(dt);
     }
 }
