@@ -1,6 +1,7 @@
 #pragma once
 // Internal: the Delaunay cell type of the mesher's triangulation (delaunay.h): CGAL's Delaunay
-// cell plus two caches the mesher's checks read far more often than the cell changes.
+// cell plus two caches the mesher's checks read far more often than the cell changes, and the
+// inside/outside label of DELVOLMESH's flood fill.
 //
 // Facet marks (one byte, in what was the cell's padding). Every insertion destroys its
 // conflict region, and the cache must drop the records of the facets of those cells: without

@@ -38,11 +38,11 @@ struct VertexInfo {
 };
 
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
-using Cb = CellWithCaches<K>; // CGAL's Delaunay cell, the facet cache's marks and the Voronoi vertex (cell_base.h)
+using Cb = CellWithCaches<K>; // CGAL's Delaunay cell, the facet cache's marks, the Voronoi vertex and the region label (cell_base.h)
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 static_assert(sizeof(Tds::Cell) <=
                   sizeof(CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K>>::Cell) + 24,
-              "the facet marks and the circumcentre cache should add 24 bytes to CGAL's cell (cell_base.h)");
+              "the facet marks, the region label bytes and the circumcentre cache should add 24 bytes to CGAL's cell (cell_base.h)");
 using Delaunay = CGAL::Delaunay_triangulation_3<DelaunayTraits, Tds>; // EPICK's decisions (delaunay_traits.h)
 using Vertex_handle = Delaunay::Vertex_handle;
 using Cell_handle = Delaunay::Cell_handle;

@@ -220,10 +220,10 @@ private:
 
     /// Grows the cavity of point \p x from tet \p t (see insert_vertex). On success \p cone
     /// holds one tet per cavity face, x written as vertex -1 in slot 0, positively oriented.
-    /// Either way \p cavity holds the tets it took and \p across gets every tet it found across
-    /// one of their faces.
+    /// Either way \p cavity holds the tets it took and \p looked_at gets every tet it found across
+    /// a face of theirs it examined (on success, every face).
     bool cavity_for(std::size_t t, std::int32_t region, const V3& x, std::vector<std::int32_t>& cavity,
-                    std::vector<Tet>& cone, std::vector<std::int32_t>& across) const;
+                    std::vector<Tet>& cone, std::vector<std::int32_t>& looked_at) const;
 
     /// The alive tet sharing tet c's face opposite its vertex j, or -1. Remembered in adj_: a
     /// tet never changes while alive and an interior face has exactly two tets, so while the

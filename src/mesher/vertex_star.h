@@ -9,7 +9,6 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,12 +22,17 @@ class CellSet {
 public:
     void clear()
     {
+        size_ = 0;
+        // Back to the first size after a hub: a few dozen cells spread over a large table
+        // would miss the cache more often.
+        if (slots_.size() != kFirstSize) {
+            resize(kFirstSize);
+            return;
+        }
         if (++stamp_ == 0) { // wrapped: forget every old entry
             for (auto& s : slots_) s.stamp = 0;
             stamp_ = 1;
         }
-        size_ = 0;
-        if (slots_.empty()) resize(256);
     }
     /// Adds \p c; false if it was there.
     bool insert(const void* c)
@@ -61,17 +65,18 @@ private:
         old.swap(slots_);
         const std::uint32_t stamp = stamp_;
         resize(4 * old.size());
-        stamp_ = 1;
         size_ = 0;
         for (const Slot& s : old)
             if (s.stamp == stamp) insert_new(s.cell);
     }
-    void resize(std::size_t n) // n a power of two
+    void resize(std::size_t n) // n a power of two; empties the set
     {
         slots_.assign(n, Slot());
+        stamp_ = 1;
         shift_ = 64;
         for (std::size_t k = n; k > 1; k >>= 1) --shift_;
     }
+    static constexpr std::size_t kFirstSize = 256;
     std::vector<Slot> slots_;
     std::uint32_t stamp_ = 0;
     std::size_t size_ = 0;

@@ -83,9 +83,14 @@ TEST_CASE("region labels: every cell labelled, flipped exactly across M, the sph
     CHECK(flipped == restricted);
     // The cell holding the centre, two voxels from Sigma, is inside.
     CHECK(s.dt.locate(Point(c[0], c[1], c[2]))->region_label() == 1);
-    // Labelling again (a triangulation already labelled) gives the same labels.
+    // Labelling again over scrambled bytes (every cell inside, every side marked) gives the same
+    // labels: the fill starts from nothing, whatever the cells hold.
     std::vector<std::int8_t> first;
-    for (auto cell = s.dt.all_cells_begin(); cell != s.dt.all_cells_end(); ++cell) first.push_back(cell->region_label());
+    for (auto cell = s.dt.all_cells_begin(); cell != s.dt.all_cells_end(); ++cell) {
+        first.push_back(cell->region_label());
+        cell->set_region_label(1);
+        cell->set_restricted_sides(0xF);
+    }
     label_regions(s.dt, s.cache);
     std::size_t i = 0, changed = 0;
     for (auto cell = s.dt.all_cells_begin(); cell != s.dt.all_cells_end(); ++cell) changed += cell->region_label() != first[i++];

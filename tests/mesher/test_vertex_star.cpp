@@ -23,6 +23,20 @@ std::vector<Cell_handle> sorted(std::vector<Cell_handle> cells)
     return cells;
 }
 
+/// gather_star's walk with a linear search of the list for the cells reached, as it was before
+/// the hash set: the order the callers rely on (facet_loops.cpp) must be this one.
+std::vector<Cell_handle> reference_walk(Vertex_handle v)
+{
+    std::vector<Cell_handle> out{v->cell()};
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const int iv = out[i]->index(v);
+        for (int j = 0; j < 4; ++j)
+            if (j != iv && std::find(out.begin(), out.end(), out[i]->neighbor(j)) == out.end())
+                out.push_back(out[i]->neighbor(j));
+    }
+    return out;
+}
+
 void require_same_stars(const Delaunay& dt)
 {
     std::vector<Vertex_handle> vertices;
@@ -37,6 +51,7 @@ void require_same_stars(const Delaunay& dt)
     for (std::size_t i = 0; i < vertices.size(); ++i) {
         REQUIRE(got[i].size() == expected[i].size());
         REQUIRE(sorted(got[i]) == sorted(expected[i]));
+        REQUIRE(got[i] == reference_walk(vertices[i]));
         infinite += std::count_if(got[i].begin(), got[i].end(), [&](Cell_handle c) { return dt.is_infinite(c); });
     }
     REQUIRE(infinite > 0); // hull vertices' stars include infinite cells
