@@ -304,6 +304,8 @@ private:
     // cavity_for()'s membership marks: equal to cavity_stamp_ for the tets of the current cavity.
     mutable std::uint32_t cavity_stamp_ = 0;
     mutable std::vector<std::uint32_t> in_cavity_;
+    mutable std::vector<std::pair<std::int32_t, int>> cavity_queue_; ///< cavity_for()'s faces to check
+
     mutable std::vector<std::uint32_t> free_at_;
     mutable std::vector<char> free_;
 };

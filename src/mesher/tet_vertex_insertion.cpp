@@ -54,26 +54,32 @@ bool Improver::insert_vertex(std::size_t t)
             for (double f : {0.5, 0.9}) cand.push_back(along(mid, nrm, f * len));
         }
     }
-    std::vector<std::int32_t> best_cavity;
-    std::vector<Tet> best_cone;
+    std::vector<std::int32_t> best_cavity, cavity;
+    std::vector<Tet> best_cone, cone;
     double best = q(t);
     std::size_t best_i = cand.size();
     for (std::size_t i = 0; i < cand.size(); ++i) {
-        std::vector<std::int32_t> cavity;
-        std::vector<Tet> cone;
         looked_at.clear();
         const bool ok = cavity_for(t, region, cand[i], cavity, cone, looked_at);
         read_cavity(cavity);
         for (std::int32_t u : looked_at) read_tet(u);
         if (!ok) continue;
-        double old_q = kBest, new_q = kBest;
+        double old_q = kBest;
         for (std::int32_t c : cavity) old_q = std::min(old_q, q(std::size_t(c)));
-        for (const Tet& x : cone) new_q = std::min(new_q, quality(x[0] < 0 ? cand[i] : P(x[0]), P(x[1]), P(x[2]), P(x[3])));
-        if (new_q > old_q + kMargin && new_q > best + kMargin) {
+        // The candidate wins iff its cone's worst quality beats both bars: the cone's tets stop
+        // being evaluated at the first one after which it does not (the worst only goes down;
+        // std::min passes over a NaN quality either way).
+        const auto wins = [&](double worst) { return worst > old_q + kMargin && worst > best + kMargin; };
+        double new_q = kBest;
+        for (const Tet& x : cone) {
+            new_q = std::min(new_q, quality(x[0] < 0 ? cand[i] : P(x[0]), P(x[1]), P(x[2]), P(x[3])));
+            if (!wins(new_q)) break;
+        }
+        if (wins(new_q)) {
             best = new_q;
             best_i = i;
-            best_cavity = std::move(cavity);
-            best_cone = std::move(cone);
+            best_cavity.swap(cavity);
+            best_cone.swap(cone);
         }
     }
     const auto failed = [&] {
@@ -129,7 +135,8 @@ bool Improver::cavity_for(std::size_t t, std::int32_t region, const V3& x, std::
     // take the tet across. Every face of every cavity tet is checked here, and the cavity only
     // grows, so each face left on the cavity's boundary at the end is one x sees: the cone
     // over it is positively oriented, and the tet across it is already in looked_at.
-    std::vector<std::pair<std::int32_t, int>> queue;
+    auto& queue = cavity_queue_;
+    queue.clear();
     for (int j = 0; j < 4; ++j) queue.emplace_back(std::int32_t(t), j);
     while (!queue.empty()) {
         const auto [c, j] = queue.back();
