@@ -1,7 +1,7 @@
 # Relocatable CMake package: find_package(isodel) then link isodel::isodel.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
-install(TARGETS isodel isodel_octree EXPORT isodelTargets
+install(TARGETS isodel isodel_verify isodel_octree EXPORT isodelTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -9,7 +9,6 @@ if(TARGET isodel_cli)
   install(TARGETS isodel_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 install(DIRECTORY include/isodel DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY octree/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/octree FILES_MATCHING PATTERN "*.h")
 install(EXPORT isodelTargets NAMESPACE isodel:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/isodel)
 configure_package_config_file(cmake/isodelConfig.cmake.in
   ${PROJECT_BINARY_DIR}/isodelConfig.cmake

@@ -18,7 +18,7 @@
 ///    file's 0 at v = 0), so decimating such a grid meshes its ring differently (known gap).
 ///
 /// Sparse volumes (narrow-band level sets) are never densified: masks and samples stay sparse,
-/// and for_each_level0_leaf_sparse() visits only unit cells that touch allocated sample nodes.
+/// and value_cells_sparse() lists only the unit cells that touch allocated sample nodes.
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
@@ -126,18 +126,6 @@ private:
     std::vector<openvdb::MaskGrid::Ptr> masks_; // masks_[0] always null
     int k_ = 1;
 };
-
-/// Calls op(Coord origin) for every level-0 leaf of \p g in \p region (unit-cell origins). Dense.
-template <typename Op>
-void for_each_level0_leaf(const AdaptiveGrid::Reader& r, const CoordBBox& region, Op&& op)
-{
-    CoordBBox box = region;
-    box.intersect(r.grid().unit_cells());
-    if (box.empty()) return;
-    const bool uniform = r.grid().max_level() == 0;
-    for (auto it = box.begin(); it; ++it)
-        if (uniform || r.leaf_level(*it) == 0) op(*it);
-}
 
 /// The unit cells whose corners touch an allocated leaf node of the samples, i.e. the only cells
 /// whose corner values can differ, clipped to the domain (cells inside one tile or the background

@@ -3,14 +3,15 @@
 /// The level-difference bound of the adaptive grid (paper Section 4.2).
 ///
 /// Our k: any two leaf cells whose closed spans meet (sharing a face, an edge or only a vertex)
-/// differ by at most k levels, i.e. their edge lengths differ by a factor of at most 2^k.
-/// The paper's k is the same "level difference between two adjacent cells". Its counting argument
-/// ("an edge is incident on at most k^2 cells in each of the other two directions", bounds 4k^2,
-/// then 4 for E points and 3k+1 for N points) counts the fine cells along a coarse edge, which is
-/// 2^k for our k; so we quote the Voronoi bounds conservatively with k_paper = 2^k:
-///   E points: 4 cells;  N points: 3 * 2^k + 1 cells (4 for k = 0, 7 for k = 1, 13 for k = 2).
-/// Vertex contacts are included (the paper says "adjacent") because a Voronoi cell near a grid
-/// vertex meets every cell around that vertex.
+/// differ by at most k levels, i.e. their edge lengths differ by a factor of at most 2^k; the
+/// paper's k is the same "level difference between two adjacent cells". Vertex contacts count
+/// because a Voronoi cell near a grid vertex meets every cell around that vertex.
+///
+/// The voxel bound (Theorem 2) on such a grid, in leaves: the Voronoi cell of an E point meets at
+/// most 3k + 1 of them (voronoi_bound_e), of an N point at most a leaf and every leaf touching
+/// it (voronoi_bound_n). The mesher does not take either count on trust: it measures every
+/// Voronoi cell (src/closed_ball/voxel_bound.h) and repairs G around any that exceeds its bound
+/// (a hole in G), so the bound holds of the mesh it returns.
 #include "octree/adaptive_grid.h"
 
 #include <cstddef>
@@ -34,8 +35,11 @@ int max_level_difference(const AdaptiveGrid& g);
 /// Only refines, so the interpolant stays exact wherever it was. Returns the number of splits.
 std::size_t balance(AdaptiveGrid& g, int k);
 
-/// Paper bound on the cells a Voronoi cell of an N point meets, for our k (see above).
-inline int voronoi_bound_n(int k) { return 3 * (1 << k) + 1; }
-inline int voronoi_bound_e(int /*k*/) { return 4; }
+/// Leaves a Voronoi cell of an E point may meet (Theorem 2, see above): 3k + 1. The mesher holds
+/// E points to the larger of this and the uniform lattice's bound (4 on a cubic lattice).
+inline int voronoi_bound_e(int k) { return 3 * k + 1; }
+/// Leaves a Voronoi cell of an N point may meet: a leaf and every leaf touching it, at most
+/// 1 + 8 + 12 2^k + 6 4^k (8 vertex, 12 2^k edge and 6 4^k face neighbours).
+inline int voronoi_bound_n(int k) { return 1 + 8 + 12 * (1 << k) + 6 * (1 << (2 * k)); }
 
 } // namespace isodel::octree

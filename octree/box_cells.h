@@ -3,7 +3,7 @@
 /// The grid cells an index-space box meets and the box's part in each, in cell-local coordinates
 /// ([0, 1]^3). Bounds of F' over a box are taken cell by cell, because F' is one trilinear
 /// function (per slab piece, face_slabs.h) only inside a cell: box_sign.h's certificate and the
-/// Voronoi cell disk certificate (src/mesher/voronoi_cell_disks.cpp) both walk a box this way.
+/// Voronoi cell disk certificate (src/closed_ball/voronoi_cell_disks.cpp) both walk a box this way.
 #include <openvdb/math/Coord.h>
 #include <openvdb/math/Vec3.h>
 

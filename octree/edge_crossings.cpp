@@ -1,19 +1,120 @@
 #include "octree/edge_crossings.h"
 
-namespace isodel::octree {
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
-EdgeCrossings edge_crossings(const SampleField& field)
+#include <algorithm>
+#include <array>
+
+namespace isodel::octree {
+namespace {
+
+// The samples are visited in blocks of 8^3 (OpenVDB's leaf size), and only in blocks where an
+// edge can be crossed: where phi changes sign along an edge, its two samples differ in value,
+// which happens only
+//  (a) where a sample is stored in a leaf node (narrow bands, dense data),
+//  (b) across the boundary of a tile (a constant value over its box, active or not),
+//  (c) across the boundary of the domain or of the active box (the ring: sample_field.h), where
+//      the samples beyond read "outside": crossed only where the sample inside is inside, i.e.
+//      in a leaf, in a tile, or anywhere on the face if the background itself is inside.
+// Everything else reads one constant (the background) on both ends of every edge. So the work
+// follows the stored nodes and the tiles' faces, never the bounding box.
+constexpr int kBlock = 8;
+
+/// The block holding sample \p c (floor division: coordinates may be negative).
+Coord block_of(const Coord& c)
 {
-    EdgeCrossings out;
-    out.crossed_cells = openvdb::MaskGrid::create();
-    auto cells = out.crossed_cells->getAccessor();
-    const SampleField::Reader reader(field);
-    // Every edge with an endpoint in the domain; edges wholly outside it are never crossed.
-    CoordBBox box = field.domain();
-    box.expand(1);
-    for (int z = box.min().z(); z < box.max().z(); ++z)
-        for (int y = box.min().y(); y < box.max().y(); ++y)
-            for (int x = box.min().x(); x < box.max().x(); ++x) {
+    const auto down = [](int x) { return x >= 0 ? x / kBlock : -((kBlock - 1 - x) / kBlock); };
+    return Coord(down(c.x()), down(c.y()), down(c.z()));
+}
+
+/// Collects the blocks whose samples may be the lower end of a crossed edge.
+class CandidateBlocks {
+public:
+    explicit CandidateBlocks(const CoordBBox& lower_ends) : box_(lower_ends) {}
+
+    /// The blocks of every lower end s of an edge with an end in \p b: b itself, and the samples
+    /// one step below it on each axis (their edge leads into b).
+    void add(CoordBBox b)
+    {
+        b.min() -= Coord(1);
+        b.intersect(box_);
+        if (b.empty()) return;
+        const Coord lo = block_of(b.min()), hi = block_of(b.max());
+        for (int z = lo.z(); z <= hi.z(); ++z)
+            for (int y = lo.y(); y <= hi.y(); ++y)
+                for (int x = lo.x(); x <= hi.x(); ++x) blocks_.emplace_back(x, y, z);
+    }
+    /// The six one-sample-thick faces of \p b, each added as above.
+    void add_faces(const CoordBBox& b)
+    {
+        for (int a = 0; a < 3; ++a)
+            for (const int at : {b.min()[a], b.max()[a]}) {
+                CoordBBox face = b;
+                face.min()[a] = face.max()[a] = at;
+                add(face);
+            }
+    }
+    /// Sorted, without repeats: the order the blocks are scanned in does not matter (the points
+    /// are sorted afterwards), but each is scanned once.
+    std::vector<Coord> take()
+    {
+        std::sort(blocks_.begin(), blocks_.end());
+        blocks_.erase(std::unique(blocks_.begin(), blocks_.end()), blocks_.end());
+        return std::move(blocks_);
+    }
+
+private:
+    CoordBBox box_;
+    std::vector<Coord> blocks_;
+};
+
+std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& lower_ends)
+{
+    const openvdb::FloatTree& tree = field.grid().tree();
+    CandidateBlocks out(lower_ends);
+    // (a) the leaf nodes.
+    for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) out.add(leaf->getNodeBoundingBox());
+    // (b) the tiles: above the leaf level only (a leaf's values are (a)).
+    std::vector<CoordBBox> inside_tiles;
+    auto tile = tree.cbeginValueAll();
+    tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    for (; tile; ++tile) {
+        CoordBBox b;
+        tile.getBoundingBox(b);
+        out.add_faces(b);
+        if (field.phi_of_value(*tile) > 0) inside_tiles.push_back(b);
+    }
+    // (c) the faces of the domain and of the active box, where the sample inside may be inside.
+    const bool background_inside = field.phi_of_value(tree.background()) > 0;
+    for (const CoordBBox& region : {field.domain(), field.lattice()})
+        for (int a = 0; a < 3; ++a)
+            for (const int at : {region.min()[a], region.max()[a]}) {
+                CoordBBox face = region;
+                face.min()[a] = face.max()[a] = at;
+                if (background_inside) {
+                    out.add(face);
+                    continue;
+                }
+                for (CoordBBox t : inside_tiles) {
+                    t.intersect(face);
+                    if (!t.empty()) out.add(t);
+                }
+            }
+    return out.take();
+}
+
+/// The crossed edges whose lower end lies in block \p b (and in \p lower_ends), in the order
+/// z, y, x, axis.
+void scan_block(const SampleField::Reader& reader, const Coord& b, const CoordBBox& lower_ends,
+                std::vector<EdgePoint>& out)
+{
+    const Coord origin(b.x() * kBlock, b.y() * kBlock, b.z() * kBlock);
+    CoordBBox box(origin, origin.offsetBy(kBlock - 1));
+    box.intersect(lower_ends);
+    for (int z = box.min().z(); z <= box.max().z(); ++z)
+        for (int y = box.min().y(); y <= box.max().y(); ++y)
+            for (int x = box.min().x(); x <= box.max().x(); ++x) {
                 const Coord s(x, y, z);
                 const double p0 = reader.phi(s);
                 for (int axis = 0; axis < 3; ++axis) {
@@ -24,18 +125,53 @@ EdgeCrossings edge_crossings(const SampleField& field)
                     const double t = p0 / (p0 - p1);
                     Vec3d pos(x, y, z);
                     pos[axis] += t;
-                    out.points.push_back({pos, s, axis});
-                    // The four cells around this edge.
-                    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-                    for (int i = 0; i < 2; ++i)
-                        for (int j = 0; j < 2; ++j) {
-                            Coord cell = s;
-                            cell[b] -= i;
-                            cell[c] -= j;
-                            cells.setValueOn(cell);
-                        }
+                    out.push_back({pos, s, axis});
                 }
             }
+}
+
+} // namespace
+
+EdgeCrossings edge_crossings(const SampleField& field)
+{
+    // Every edge with an end in the domain; edges wholly outside it are never crossed. Lower
+    // ends s run over the domain grown by one, less its last layer on each axis.
+    CoordBBox lower_ends = field.domain();
+    lower_ends.expand(1);
+    lower_ends.max() -= Coord(1);
+    const std::vector<Coord> blocks = candidate_blocks(field, lower_ends);
+
+    std::vector<std::vector<EdgePoint>> found(blocks.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 16), [&](const auto& r) {
+        const SampleField::Reader reader(field);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) scan_block(reader, blocks[i], lower_ends, found[i]);
+    });
+    EdgeCrossings out;
+    std::size_t n = 0;
+    for (const auto& v : found) n += v.size();
+    out.points.reserve(n);
+    for (auto& v : found) out.points.insert(out.points.end(), v.begin(), v.end());
+    // The order of a scan of the whole box, z slowest, then y, x, axis: E's ids follow it, and
+    // every later decision is keyed by ids, so the mesh is the same whatever blocks were read.
+    std::sort(out.points.begin(), out.points.end(), [](const EdgePoint& p, const EdgePoint& q) {
+        const std::array<int, 4> a{{p.lower.z(), p.lower.y(), p.lower.x(), p.axis}};
+        const std::array<int, 4> b{{q.lower.z(), q.lower.y(), q.lower.x(), q.axis}};
+        return a < b;
+    });
+
+    out.crossed_cells = openvdb::MaskGrid::create();
+    auto cells = out.crossed_cells->getAccessor();
+    for (const EdgePoint& p : out.points) {
+        // The four cells around the edge.
+        const int b = (p.axis + 1) % 3, c = (p.axis + 2) % 3;
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j) {
+                Coord cell = p.lower;
+                cell[b] -= i;
+                cell[c] -= j;
+                cells.setValueOn(cell);
+            }
+    }
     return out;
 }
 

@@ -1,15 +1,17 @@
 #pragma once
 /// \file face_slabs.h
 /// The surface isodel meshes: Sigma' = {F o phi = v}, Sigma with a slab of half-width h around
-/// every grid plane (README, "Two deliberate departures": face slabs).
+/// every grid plane (docs/algorithm.md, "Two deliberate departures": face slabs).
 ///
 /// Why. The trilinear Sigma is only C0 across cell faces. Where F has a valley across a face
 /// (it grows away from the face on both sides) and a small gradient along it, Sigma's two sheets
 /// meet along the face at an arbitrarily small dihedral angle: a knife-edge fin. A wedge is scale
 /// invariant, so Voronoi edges near its edge cross both sheets at every scale and the closed ball
-/// refinement never ends. Until 2026-11-26 the mesher cut such pairs of crossings per Voronoi
-/// edge (a rule, not a surface: different checks saw different surfaces, and 2-6 in 1000 random
-/// volumes got the wrong topology).
+/// refinement never ends. Cancelling such pairs of crossings per Voronoi edge instead would be
+/// a rule, not a surface: the closed-ball checks (CBP_VE, CBP_VF, CBP_VC, Theorem 1) and the
+/// eps test would each see a different surface, so no single surface is certified. Sigma' is
+/// one surface that every check of the mesher reads the same way, homeomorphic to Sigma and
+/// close to it (below).
 ///
 /// What. phi maps mesh index space onto sample index space, one axis at a time: the slab
 /// [c - h, c + h] around every integer c goes to c, and each cell's core [c + h, c + 1 - h] is
@@ -85,7 +87,7 @@ struct FaceSlabs {
 
 /// The slabs the mesher uses for a Hausdorff bound of \p eps_voxels (smallest voxel edges):
 /// h = eps / 50, at most 1/4. A fin's tip is 2h thick in Sigma', and refining toward it costs
-/// about its length / h points; eps / 50 was the old crease cut's trim, and keeps the shift
+/// about its length / h points, so h should not be tiny; eps / 50 still keeps the shift
 /// |T (h, h, h)| (under 0.035 eps on a cubic lattice) a small part of the bound.
 inline FaceSlabs face_slabs_for_eps(double eps_voxels)
 {

@@ -61,7 +61,7 @@ ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGr
     for (int a = 0; a < 3; ++a) out.bound_n *= 2 * r[a] + 1;
     // An E point on an a-edge is trapped in (2 r_b) x (2 r_c) cells around the edge; report the
     // worst axis. That argument (Theorem 2) needs lattice planes orthogonal to the edge: on a
-    // sheared lattice (EMD-3001: 8 cells measured) only the N-point block argument holds, and an
+    // sheared lattice (an E point's cell can meet more than 4) only the N-point block argument holds, and an
     // E point lies in a crossed cell like any N point.
     if (orthogonal_lattice(field))
         for (int a = 0; a < 3; ++a)

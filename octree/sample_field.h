@@ -18,9 +18,9 @@
 ///    limit (Morse theory on the cells, faces and vertices); E points never coincide with grid
 ///    points, and two blobs touching at a saddle at v are one component. d is as large as that
 ///    allows, up to 1 % of the range: a sample at v and a neighbour one quantum below put a
-///    feature ~d/quantum voxel thick between them, and at 1e-3 (the rule before 2026-11-25)
-///    such features lost or gained handles at eps = 0.5 voxel (3 of 60 quantized property
-///    volumes). The surface moves by about d / |grad F| from the limit.
+///    feature ~d/quantum voxel thick between them, and with a cap as small as 1e-3 of the
+///    range such features on quantized data are too thin for a mesh at eps = 0.5 voxel to
+///    keep their handles. The surface moves by about d / |grad F| from the limit.
 ///  - Domain: samples inside the active bounding box (the lattice) are read through the grid
 ///    (inactive voxels give the background or tile value). The ring of samples around it reads
 ///    the background too when the background is strictly outside (a fog volume's 0 below v: Sigma
@@ -48,13 +48,15 @@ public:
     /// \p parent seen through the box \p clip (sample coordinates): the same samples, level v*
     /// and outside value inside it, "outside" beyond it, so its Sigma is \p parent's Sigma inside
     /// \p clip, closed along the box. The field of one block of partitioned meshing
-    /// (src/mesher/partitioned_meshing.h). \throw InvalidInput if \p clip misses the domain.
+    /// (src/surface/partitioned_meshing.h). \throw InvalidInput if \p clip misses the domain.
     SampleField(const SampleField& parent, const CoordBBox& clip);
 
     const openvdb::FloatGrid& grid() const { return *grid_; }
     const openvdb::math::Transform& transform() const { return grid_->transform(); }
     /// Samples read through the grid: active bbox grown by one voxel.
     const CoordBBox& domain() const { return domain_; }
+    /// The active bounding box (the ring around it is domain() less this box).
+    const CoordBBox& lattice() const { return lattice_; }
     double isovalue() const { return isovalue_; }
     double effective_isovalue() const { return effective_; }
     Inside inside() const { return inside_; }

@@ -123,7 +123,7 @@ SegmentCrossings segment_crossings(const SampleField::Reader& reader, const Vec3
         // piece). v0 keeps its sign to the exit, and only its sign is read from here on. The
         // pieces' cubics are expanded about the segment's start: within a few cells of it their
         // rounding is far below the margin and they would find no sign change either (the same
-        // roots; the 76 corpus meshes are byte-identical), but a hundred cells away it can reach
+        // roots), but a hundred cells away it can reach
         // the margin, and there the skip is the more accurate of the two.
         const Vec3d p_in = a_local + t0 * d, p_out = a_local + t1 * d;
         const bool keeps_sign = t1 > t0 && sign_on_cell_box(cf, corner, openvdb::math::minComponent(p_in, p_out),

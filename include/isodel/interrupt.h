@@ -1,9 +1,11 @@
 #pragma once
 /// \file interrupt.h
-/// Progress reporting and cancellation, after OpenVDB's interrupter pattern
+/// Progress reporting, cancellation and tracing, after OpenVDB's interrupter pattern
 /// (openvdb/util/NullInterrupter.h): long operations call start(stage), then
 /// wasInterrupted(percent) regularly, then end(). Returning true from wasInterrupted makes
-/// the operation throw isodel::Cancelled without writing anything.
+/// the operation throw isodel::Cancelled without writing anything. The library prints nothing:
+/// its trace lines (one per refinement round and check) go to log(), which ignores them unless
+/// the caller overrides it (the CLI's --trace writes them to stderr).
 
 namespace isodel {
 
@@ -17,6 +19,9 @@ public:
     /// Progress of the current stage in percent (0..100), or -1 when unknown.
     /// \return true to request cancellation.
     virtual bool wasInterrupted(int percent = -1) { (void)percent; return false; }
+    /// A trace line (no trailing newline), from the thread that called the library or from a
+    /// worker thread: an override that writes somewhere shared must serialise its writes.
+    virtual void log(const char* message) { (void)message; }
 };
 
 /// Never interrupts, reports nothing.

@@ -4,7 +4,7 @@
 /// sampled volume, with the paper's guarantees (Goswami, Gillette, Bajaj, Sections 4.1-4.3 and 5):
 ///  I.   M is homeomorphic to Sigma (closed ball property of Vor(E u G u N), Theorem 1);
 ///  II.  the two-sided Hausdorff distance between M and Sigma is at most eps (the paper's
-///       circumcentre criterion, then local measurement: src/mesher/hausdorff_refinement.h);
+///       circumcentre criterion, then local measurement: src/refinement/hausdorff_refinement.h);
 ///  III. M is a subcomplex of the Delaunay triangulation of its vertices;
 ///  IV.  the same on adaptive grids (see octree/).
 ///
@@ -41,19 +41,16 @@ struct MeshOptions {
     double eps = 0.0;                    ///< Hausdorff bound in world units; 0 = use eps_voxels
     double eps_voxels = 0.5;             ///< ... in units of the smallest voxel edge
     bool snap = false;                   ///< Section 5: snap E points within eps/2 of a grid point
-    /// Also return the final point set E u G u N of the surface phase (MeshResult::points), e.g.
-    /// to time a bare Delaunay triangulation of it (tools/bench/compare_bench).
-    bool keep_points = false;
     int threads = 0;                     ///< 0 = all hardware threads; result does not depend on it
     std::size_t max_points = 0;          ///< cap on inserted points N; 0 = 100 x |E| + 10^6
     int max_rounds = 2000;               ///< cap on insertion rounds
     /// Triangle quality, optional (0 = off): after every guarantee holds, restricted facets
     /// whose smallest angle is under this many degrees get their surface point inserted (the
     /// guarantees are checked again after each insertion), as in Delaunay refinement of smooth
-    /// surfaces (Boissonnat-Oudot). Measured: 20 is met on the bundled torus and 1hpv_molmap,
-    /// 25 on molmap but not on the torus within the bound of 2 |E| + 10^4 points (E points a
-    /// hair apart on the grid edges around one sample force graded refinement). Why it
-    /// stopped: MeshStats::facet_angle_stop.
+    /// surfaces (Boissonnat-Oudot). A high angle need not be reachable within the bound of
+    /// 2 |E| + 10^4 points: E points a hair apart on the grid edges around one sample force
+    /// graded refinement there, unlike on a smooth surface. Why it stopped:
+    /// MeshStats::facet_angle_stop.
     double facet_angle_deg = 0;
     TetRegion tets = TetRegion::None;    ///< also build a tetrahedral mesh (DELVOLMESH)
     /// Improve the worst tets (smoothing and collapses of vertices off M, flips and edge removal
@@ -63,14 +60,14 @@ struct MeshOptions {
     /// Partitioned meshing (paper Fig. 8), dense grids: > 0 cuts the domain into blocks of this
     /// many voxels per axis, meshes each block with a protective collar concurrently, then
     /// merges their points in one Delaunay triangulation whose closed-ball and eps checks fix
-    /// the seams (src/mesher/partitioned_meshing.h). 0 = one block. Same guarantees either way.
+    /// the seams (src/surface/partitioned_meshing.h). 0 = one block. Same guarantees either way.
     int block_voxels = 0;
     /// Check the surface with isodel's verifier (include/isodel/verify.h: topology against an
     /// independent computation of Sigma's, the eps bound, a closed oriented 2-manifold without
     /// self-intersections, Delaunay conformity) before returning it; when it fails,
     /// mesh_isosurface throws GuaranteeViolated saying why, so a wrong mesh is never returned.
     /// So does a reference topology the verifier cannot settle (near-critical data). Costs one
-    /// verification (about as long as the meshing).
+    /// full verification on top of the meshing (its own reference topology of Sigma).
     bool certify = false;
 };
 
@@ -95,7 +92,7 @@ struct TetStats {
     double min_dihedral_deg = 0, max_dihedral_deg = 0;
     double max_radius_edge = 0;           ///< circumradius / shortest edge, worst tet
     /// The same two figures over the tets with no vertex on M (grid-point tets: the bad
-    /// elements of DELVOLMESH all touch M, see src/mesher/tet_quality.h).
+    /// elements of DELVOLMESH all touch M, see src/volume/tet_quality.h).
     double min_dihedral_deg_off_surface = 0, max_radius_edge_off_surface = 0;
     std::size_t tets_touching_surface = 0;
     std::size_t tets_below_10deg = 0;     ///< tets with a dihedral angle under 10 degrees
@@ -149,8 +146,9 @@ struct MeshStats {
     std::vector<ComponentTopology> components;
     TetStats tets;                        ///< filled when MeshOptions::tets != None
     PartitionStats partition;             ///< filled when MeshOptions::block_voxels > 0
-    /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. (Until 2026-11-26
-    /// certify re-meshed with other crease cuts, and this counted the attempts.)
+    /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. It never exceeds
+    /// 1: Sigma' has no knife-edge creases (octree/face_slabs.h), so there is no crease parameter
+    /// a second meshing could vary, and a failed verification is final.
     int certify_attempts = 0;
 };
 
@@ -161,10 +159,12 @@ struct MeshResult {
     /// tets.triangles == surface.triangles, so the inside region's boundary is M index for index.
     TetMesh tets;
     MeshStats stats;
-    /// With MeshOptions::keep_points: every vertex of Del(E u G u N) once M is final (before the
-    /// tetrahedra's G'), world coordinates, in insertion (id) order.
-    std::vector<std::array<double, 3>> points;
 };
+
+/// Checks \p options before any work: eps (or eps_voxels) positive and finite, threads,
+/// max_rounds, max_points, block_voxels and facet_angle_deg in their ranges.
+/// \throw InvalidInput naming the option and the value it refuses
+void check_mesh_options(const MeshOptions& options);
 
 /// \p stats as a JSON object (counts, phase seconds, peak memory, voxel bounds, topology).
 std::string to_json(const MeshStats& stats);

@@ -115,7 +115,8 @@ struct DelaunayReport {
     bool passed = false;
 };
 
-/// isodel verify --tets: the tetrahedral mesh against M (issue 6's promises, checked from the file).
+/// isodel verify --tets: the tetrahedral mesh against M (what DELVOLMESH, paper Section 4.1, and
+/// MeshOptions::tets promise of it, checked from the files alone).
 struct TetReport {
     bool checked = false;
     std::size_t vertices = 0, tets = 0;

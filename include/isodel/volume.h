@@ -20,6 +20,13 @@ enum class Inside { Above, Below };
 
 const char* to_string(Inside inside);
 
+/// The inside side when the caller does not say: Below for level sets (OpenVDB's convention,
+/// negative inside), Above for everything else (densities, fog volumes, maps).
+inline Inside default_inside(const openvdb::FloatGrid& grid)
+{
+    return grid.getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above;
+}
+
 /// Layout of a headerless raw volume (x fastest, then y, then z; little-endian).
 struct RawLayout {
     std::array<int, 3> dims{0, 0, 0};

@@ -1,9 +1,9 @@
 #pragma once
 // Internal: the exact sign of the in-sphere determinant in fixed-width integer arithmetic, for
-// the in-sphere tests of the mesher's Delaunay traits (mesher/delaunay_traits.h) that CGAL's
+// the in-sphere tests of the mesher's Delaunay traits (delaunay/delaunay_traits.h) that CGAL's
 // floating-point filter cannot decide and that are not box corners. Nearly all of those are
 // exactly 0 (lattice points cospherical across grid cubes), which no floating-point filter can
-// decide; EPICK's multiprecision (Mpzf) evaluation took ~1 us per test.
+// decide, and EPICK's multiprecision (Mpzf) evaluation of them is far slower than this.
 //
 // Why integers suffice: the determinant is a polynomial of the differences p - t. Where those
 // are exact doubles (Sterbenz: y/2 <= x <= 2y makes x - y exact, so nearly always for the

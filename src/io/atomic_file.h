@@ -16,7 +16,6 @@ public:
     AtomicFile& operator=(const AtomicFile&) = delete;
 
     std::ofstream& stream() { return out_; }
-    const std::string& temp_path() const { return tmp_; }
     /// Flushes, checks the stream, renames to the final path. \throw IoError
     void commit();
 

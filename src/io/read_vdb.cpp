@@ -61,7 +61,7 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
         vol.grid->setName(av.samples->getName());
         vol.adaptive_levels = info->levels;
         vol.adaptive_k = info->k;
-        vol.default_inside = vol.grid->getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above;
+        vol.default_inside = default_inside(*vol.grid);
         finish_volume(vol);
         return vol;
     }
@@ -104,7 +104,7 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
     vol.path = path;
     vol.format = "vdb";
     vol.grid = to_float_grid(base);
-    vol.default_inside = vol.grid->getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above;
+    vol.default_inside = default_inside(*vol.grid);
     finish_volume(vol);
     return vol;
 }

@@ -1,4 +1,5 @@
-// Tetrahedral mesh writers for the FEM tools issue 6 names: Medit .mesh (ASCII), VTK XML .vtu
+// Tetrahedral mesh writers for the formats FEM tools read (DELVOLMESH's output, paper Section
+// 4.1): Medit .mesh (ASCII), VTK XML .vtu
 // (raw appended binary, little-endian, UInt64 headers) and Gmsh .msh 4.1 (ASCII). Coordinates
 // are written with 17 significant digits (or as raw doubles), so they round-trip exactly and
 // the surface triangles stay bit-identical to write_surface_mesh's output. Every format keeps
@@ -21,8 +22,9 @@
 namespace isodel {
 namespace {
 
-/// Text output through a buffer, numbers formatted by std::to_chars: iostream's << formatted the
-/// 3 M lines of a 128^3 protein's inside tets in ~2 s. Doubles as printf's %.17g (to_chars'
+/// Text output through a buffer, numbers formatted by std::to_chars: iostream's << goes through
+/// the locale and a virtual call per number, slow on the millions of lines of a large mesh.
+/// Doubles as printf's %.17g (to_chars'
 /// general format at that precision is specified so), integers in decimal: the same bytes as
 /// << with setprecision(17).
 class TextOut {

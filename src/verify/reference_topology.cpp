@@ -18,7 +18,8 @@
 namespace isodel::verify {
 namespace {
 
-/// Open addressing hash map uint64 -> int32 (std::unordered_map costs ~4x the memory here).
+/// Open addressing hash map uint64 -> int32 (std::unordered_map's node per entry would cost
+/// several times the memory of a 12-byte slot).
 class KeyMap {
 public:
     KeyMap() { rehash(1 << 16); }
@@ -266,8 +267,7 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
     // (a saddle value close to v) needs a finer lattice before the PL surface settles.
     // R itself is raised above \p refine while the 2R level stays within \p budget sub-lattice
     // samples: on random data R = 4 and 8 can agree on a spurious handle of the PL surface
-    // (cells/random_n6_s1: genus 9 at R = 4, 8; 8 from R = 16 on, as the manifest says), and
-    // small volumes can afford much finer lattices.
+    // that finer lattices no longer show, and small volumes can afford much finer lattices.
     const double per_cell = budget / double(std::max<std::size_t>(cells.size(), 1));
     refine = std::max(refine, std::min(16, int(std::floor(std::cbrt(per_cell) / 2.0))));
     std::vector<VerifyComponent> prev = topology_at(field, cells, base, refine, planes);

@@ -26,7 +26,7 @@ VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& m
     if (options.refine < 1 || options.refine > 64) throw InvalidInput("verify: --refine must be in [1, 64]");
     if (options.eps < 0 || options.eps_voxels < 0) throw InvalidInput("verify: eps must be >= 0");
     const Inside inside = options.inside ? *options.inside
-                                         : (grid.getGridClass() == openvdb::GRID_LEVEL_SET ? Inside::Below : Inside::Above);
+                                         : default_inside(grid);
     verify::TrilinearField field(grid, options.isovalue, inside);
 
     VerifyReport rep;

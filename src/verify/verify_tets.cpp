@@ -1,5 +1,6 @@
-// isodel verify --tets: what issue 6 promises of a tetrahedral mesh, checked from the files alone
-// (independent of src/mesher/): positive orientation by CGAL's exact orientation predicate, the
+// isodel verify --tets: what `isodel mesh --tets` (DELVOLMESH, paper Section 4.1) promises of a
+// tetrahedral mesh, checked from the files alone
+// (independent of the mesher): positive orientation by CGAL's exact orientation predicate, the
 // inside region bounded exactly by M (same triangles, same orientation, vertices matched by exact
 // position), its volume equal to the volume M encloses, and the dihedral angles.
 #include <isodel/verify.h>

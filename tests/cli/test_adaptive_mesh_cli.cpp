@@ -1,8 +1,8 @@
-// `isodel decimate` then `isodel mesh` (issue 4, Property IV; the users' "adaptive decimation
+// `isodel decimate` then `isodel mesh` (paper Property IV; the users' "adaptive decimation
 // then meshing"): an adaptive file is meshed on its leaves -- the stats report the leaf voxel
 // bound 3k+1 and fewer E and G points and tetrahedra than meshing its dense resampling -- and
 // `isodel verify` certifies surface and tetrahedra against the adaptive interpolant.
-#include "cli/mini_json.h"
+#include "support/mini_json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>

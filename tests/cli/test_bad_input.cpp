@@ -1,4 +1,4 @@
-// Every bad input of issue 2 through the real executable: exit code 2, exactly one line on
+// Every kind of bad input (include/isodel/errors.h) through the real executable: exit code 2, exactly one line on
 // stderr "isodel: <file>: <problem>", and nothing (neither output nor temporary) in the output
 // folder. Malformed inputs are generated here, in a temporary folder.
 #include "io/test_files.h"

@@ -6,7 +6,7 @@
 // the active box of a sparse .vdb (proteins, narrow bands, cells) can be smaller than the
 // manifest's lattice. For those the reported box must lie inside the manifest's and agree with
 // vdb_print exactly; for dense .vdb files (active box == manifest box) everything must be equal.
-#include "cli/mini_json.h"
+#include "support/mini_json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
-// `isodel mesh --blocks N` (issue 7, partitioned meshing after the paper's Fig. 8): the blocks
+// `isodel mesh --blocks N` (partitioned meshing after the paper's Fig. 8): the blocks
 // contribute the refinement, the stats say so, and the merged mesh verifies like the
 // unpartitioned one; with tetrahedra too. Adaptive inputs are refused with a one-line error and
 // no output file.
-#include "cli/mini_json.h"
+#include "support/mini_json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>

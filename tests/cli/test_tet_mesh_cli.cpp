@@ -1,8 +1,8 @@
-// `isodel mesh --tets` (issue 6): the .mesh, .vtu and .msh files load in the readers FEM users
+// `isodel mesh --tets` (DELVOLMESH, paper Section 4.1): the .mesh, .vtu and .msh files load in the readers FEM users
 // have -- meshio, VTK's XML reader, the Gmsh CLI -- and each agrees with the run's statistics on
 // vertex, triangle and per-region tetrahedron counts (tests/cli/tet_mesh_readers.py); a bad
 // extension is refused before any meshing.
-#include "cli/mini_json.h"
+#include "support/mini_json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Loads a tetrahedral mesh written by `isodel mesh --tets` with the readers FEM users have
-(issue 6): meshio (.mesh, .vtu, .msh), VTK's XML reader (.vtu) and the Gmsh CLI (.msh: `gmsh
+(DELVOLMESH's output): meshio (.mesh, .vtu, .msh), VTK's XML reader (.vtu) and the Gmsh CLI (.msh: `gmsh
 -check` parses it and reports counts; a conversion to MSH 2.2 gives the physical tag of every
 element). Each must agree with the expected counts; tet volumes must be positive.
 

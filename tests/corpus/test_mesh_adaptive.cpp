@@ -8,7 +8,7 @@
 // the round trip through a file is checked too. Label "corpus".
 #include <catch2/catch.hpp>
 
-#include "../mesher/mesher_test_support.h"
+#include "support/mesher_test_support.h"
 
 #include <isodel/adaptive.h>
 #include <isodel/volume.h>

@@ -4,7 +4,7 @@
 // Label "corpus".
 #include <catch2/catch.hpp>
 
-#include "../mesher/mesher_test_support.h"
+#include "support/mesher_test_support.h"
 
 #include <isodel/volume.h>
 
@@ -59,7 +59,7 @@ TEST_CASE("shared volumes: topology and guarantees at eps 0.5 voxel", "[corpus][
                  // thin needles and tubes through Voronoi facets (CBP_VF loops)
                  "protein/1hpv_molmap_6A_2A.vdb", "em/emd3001.vdb", "analytic/gyroid_ball.vdb",
                  "protein/1hpv_blobby_1A.vdb",
-                 // open level set cut by the box, knife-edge creases everywhere (~50 s)
+                 // open level set cut by the box, knife-edge creases everywhere (the slowest here)
                  "analytic/marschner_lobb.vdb",
                  // dense files, background 0 = v: the box must not be wrapped in a shell
                  "analytic/torus.mrc", "analytic/genus3.mrc", "cells/random_n4_s1.mrc",

@@ -4,10 +4,10 @@
 // Around a grid edge whose samples are both near v and across which F turns back both ways,
 // Sigma is four steep trilinear patches; the crease cut that came before the face slabs
 // (octree/face_slabs.h) meshed genus 340 and 341 at eps 0.25 and 0.1 until it was kept away from
-// such edges, and that guard broke other volumes (tests/mesher/test_knife_edge_creases.cpp).
+// such edges, and that guard broke other volumes (tests/refinement/test_knife_edge_creases.cpp).
 #include <catch2/catch.hpp>
 
-#include "../mesher/mesher_test_support.h"
+#include "support/mesher_test_support.h"
 
 
 using namespace isodel;

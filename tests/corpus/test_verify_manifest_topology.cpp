@@ -3,7 +3,7 @@
 // tests/verify/test_verify_reference.cpp covers. Slow-ish (the 136^3 bunny): label "corpus".
 #include <catch2/catch.hpp>
 
-#include "../verify/verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include <isodel/verify.h>
 

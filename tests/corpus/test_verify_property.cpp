@@ -1,11 +1,11 @@
-// Property test (issue 5): small random volumes with fixed seeds, some quantized so that samples
+// Property test: small random volumes with fixed seeds, some quantized so that samples
 // equal the isovalue, each meshed by mesh_isosurface and certified by verify_surface: seeds
-// 1-1000 plain and 1-1000 with --snap, about 2.5 min each on one core (label "corpus").
-// ISODEL_PROPERTY_COUNT overrides the count (2000 each verified on 2026-11-26),
+// 1-1000 plain and 1-1000 with --snap (label "corpus", one of the slow tests).
+// ISODEL_PROPERTY_COUNT overrides the count,
 // ISODEL_PROPERTY_DUMP=DIR writes the failing volumes there.
 #include <catch2/catch.hpp>
 
-#include "../verify/verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include <isodel/errors.h>
 #include <isodel/mesh.h>
@@ -19,10 +19,10 @@
 using namespace isodel;
 
 
-// No seed is exempt. (Until 2026-11-25 seeds 35, 175 and 215 - quantized, ties with v - lost or
-// gained a handle at eps 0.5 voxel: the tie shift was capped at 1e-3 of the value range, which
-// left features ~1e-3 voxel thick. Capped at 1e-2, and bounded by the cells' interior saddles
-// too (sample_field.h), 300 of 300 seeds pass, with --snap too.)
+// No seed is exempt. (Quantized seeds with ties at v, such as 35, 175 and 215, are the sharp
+// ones: a tie shift capped at 1e-3 of the value range would leave features ~1e-3 voxel thick
+// that lose or gain a handle at eps 0.5 voxel. sample_field.h caps it at 1e-2 and bounds it by
+// the cells' interior saddles too, so these pass, with --snap too.)
 
 /// Meshes and verifies the random volumes with seeds 1..count.
 void run_property(bool snap)

@@ -1,4 +1,4 @@
-// DELVOLMESH (issue 6) on the shared volumes at eps = 0.5 voxel: the skull, both proteins, the
+// DELVOLMESH (paper Section 4.1) on the shared volumes at eps = 0.5 voxel: the skull, both proteins, the
 // EMD-3001 map, both level sets and every analytic shape of ../shared/data (the cells/ volumes are
 // covered by test_mesh_corpus's surfaces). Every tet positively oriented, inside volume ==
 // volume enclosed by M to 1e-9 relative, the inside region's boundary == M's triangles exactly;
@@ -6,8 +6,8 @@
 // Label "corpus".
 #include <catch2/catch.hpp>
 
-#include "../mesher/mesher_test_support.h"
-#include "../mesher/volume_mesh_checks.h"
+#include "support/mesher_test_support.h"
+#include "support/volume_mesh_checks.h"
 
 #include <chrono>
 #include <cstdio>

@@ -1,8 +1,8 @@
 // Queries on random adaptive grids: point location, neighbours, E points on leaf edges, G, and
 // the segment walk (paper Sections 4.1-4.3 on an octree).
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
-#include "octree/adaptive_queries.h"
+#include "support/adaptive_reference.h"
 #include "octree/edge_crossings.h"
 
 #include <catch2/catch.hpp>

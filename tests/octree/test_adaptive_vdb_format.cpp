@@ -1,5 +1,5 @@
 // The adaptive .vdb format (adaptive_vdb_format.h): save -> load exact, info, vdb_print.
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
 #include "octree/adaptive_vdb_format.h"
 

@@ -1,5 +1,5 @@
 // Balance (paper Section 4.2: adjacent leaves differ by at most k levels) over random refinements.
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
 #include "octree/adaptive_queries.h"
 

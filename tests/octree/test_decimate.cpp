@@ -1,5 +1,5 @@
 // Decimation (paper Property IV) on the shared skull and protein volumes and on synthetic data.
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
 #include "octree/adaptive_vdb_format.h"
 #include "octree/balance.h"

@@ -1,6 +1,6 @@
 // Sigma' = {F o phi = v} (octree/face_slabs.h, cell_function.h): phi and its preimages, F' per
 // slab/core box, and the segment walk and phi_at reading F' in mesh space.
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
 #include "octree/cell_function.h"
 #include "octree/segment_walk.h"

@@ -1,8 +1,8 @@
 // Continuity of the adaptive interpolant (hanging-node constraints, interpolant.h) and its
 // restriction to segments (paper Section 4.3: a cubic for trilinear).
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
-#include "octree/adaptive_queries.h"
+#include "support/adaptive_reference.h"
 #include "octree/interpolant.h"
 
 #include <catch2/catch.hpp>

@@ -1,5 +1,5 @@
 // Resampling an adaptive grid to the finest lattice (resample.h): exact for trilinear.
-#include "test_adaptive_random.h"
+#include "support/adaptive_random.h"
 
 #include "octree/interpolant.h"
 #include "octree/resample.h"

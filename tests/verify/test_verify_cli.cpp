@@ -2,7 +2,7 @@
 // fails (eps too small), exit 2 for a missing mesh file.
 #include <catch2/catch.hpp>
 
-#include "verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include <cstdlib>
 #include <filesystem>

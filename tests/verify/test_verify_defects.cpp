@@ -3,7 +3,7 @@
 // face) is caught by the check that should catch it.
 #include <catch2/catch.hpp>
 
-#include "verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include <isodel/verify.h>
 

@@ -6,7 +6,7 @@
 // forgot a coordinate) would hand a query another cell's triangles.
 #include <catch2/catch.hpp>
 
-#include "verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include "verify/local_reference.h"
 

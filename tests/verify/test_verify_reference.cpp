@@ -3,7 +3,7 @@
 // and larger volumes of ../shared/data are in tests/corpus/test_verify_manifest_topology.cpp.
 #include <catch2/catch.hpp>
 
-#include "verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include "octree/critical_values.h"
 

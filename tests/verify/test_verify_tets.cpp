@@ -4,7 +4,7 @@
 // catch it. The checks use only the two meshes (src/verify/verify_tets.cpp).
 #include <catch2/catch.hpp>
 
-#include "verify_test_support.h"
+#include "support/verify_test_support.h"
 
 #include <isodel/mesh.h>
 #include <isodel/verify.h>

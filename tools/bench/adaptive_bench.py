@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Decimation then meshing on the leaves (issue 4, Property IV), against meshing the same F densely.
+"""Decimation then meshing on the leaves (paper Property IV), against meshing the same F densely.
 
 For each (volume, iso, inside, tolerance, k): `isodel decimate`, `isodel mesh` of the adaptive
 file (E on leaf edges, G from leaves, G' = leaf corners), `isodel resample` + `isodel mesh` of the

@@ -1,4 +1,4 @@
-// compare_bench: issue 7's benchmark against the field. For each volume and each eps it runs, in
+// compare_bench: the benchmark of the speed targets against the field. For each volume and each eps it runs, in
 // one process and interleaved within every repetition, each method in its own forked child (so
 // the peak memory, getrusage's ru_maxrss through wait4, is per method, and a crash or a timeout
 // only loses that row):
@@ -17,8 +17,8 @@
 //   DT(E+G+N)      CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insertion
 //                  (dt.insert(begin, end)), of isodel's own final point set E u G u N
 //                  (MeshResult::points of the "isodel 2thr" run of the same repetition, with
-//                  MeshOptions::keep_points). Only the insertion is timed.
-//   DT traits      the same with isodel's Delaunay traits (src/mesher/delaunay_traits.h)
+//                  mesher::mesh_keeping_points). Only the insertion is timed.
+//   DT traits      the same with isodel's Delaunay traits (src/delaunay/delaunay_traits.h)
 //
 // Times are wall-clock (steady_clock) around the method only (the volume is read before the
 // clock starts), medians over --reps. Peak memory is the child's whole peak RSS (it includes the
@@ -34,9 +34,10 @@
 #include "../../src/verify/mini_json.h"
 #include "octree/sample_field.h"
 #include "octree/segment_walk.h"
+#include "surface/final_points.h"
 
-#include "bench_support.h"
-#include "mesher/delaunay_traits.h"
+#include "support/bench_support.h"
+#include "delaunay/delaunay_traits.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -222,9 +223,10 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         mo.threads = m == I1 ? 1 : 2;
         if (m == IT) mo.tets = isodel::TetRegion::Inside;
         if (m == IB) mo.block_voxels = g_block_voxels;
-        mo.keep_points = m == I2; // for the DT(E+G+N) row
+        std::vector<std::array<double, 3>> points; // for the DT(E+G+N) row
         const auto t0 = std::chrono::steady_clock::now();
-        isodel::MeshResult r = isodel::mesh_isosurface(*vol.grid, mo);
+        isodel::MeshResult r =
+            m == I2 ? isodel::mesher::mesh_keeping_points(*vol.grid, mo, points) : isodel::mesh_isosurface(*vol.grid, mo);
         out.secs = seconds_since(t0);
         out.vertices = (long long)(m == IT ? r.tets.vertices.size() : r.surface.vertices.size());
         out.triangles = (long long)r.surface.triangles.size();
@@ -232,7 +234,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         out.extra = (long long)(r.stats.e_points + r.stats.g_points + r.stats.n_topology + r.stats.n_geometry);
         copy_str(out.topo, sizeof out.topo, isodel_topology(r.stats));
         copy_str(out.msg, sizeof out.msg, phases(r.stats));
-        if (m == I2) payload = std::move(r.points);
+        if (m == I2) payload = std::move(points);
         out.ok = 1;
         return;
     }
@@ -264,7 +266,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         pts.reserve(dt_input.size());
         for (const auto& v : dt_input) pts.emplace_back(v[0], v[1], v[2]);
         // DT: CGAL's EPICK, the issue's baseline. DTX: the same points with isodel's own
-        // Delaunay traits (src/mesher/delaunay_traits.h: exact shortcuts for the in-sphere tests
+        // Delaunay traits (src/delaunay/delaunay_traits.h: exact shortcuts for the in-sphere tests
         // that are exactly 0 on grid points), what isodel's triangulation of them costs.
         const auto triangulate = [&](auto dt) {
             const auto t0 = std::chrono::steady_clock::now();
@@ -510,7 +512,7 @@ int main(int argc, char** argv)
     std::printf("isodel/this = median time of isodel 2thr (isodel+tets 2thr for Mesh_3 tets) / this row's; < 1: isodel faster.\n"
                 "DT(E+G+N) = CGAL Delaunay_triangulation_3<EPICK>, spatially sorted insert, of isodel 2thr's final point\n"
                 "          set E u G u N (MeshResult::points). DT(E+G+N) traits = the same with isodel's Delaunay traits\n"
-                "          (src/mesher/delaunay_traits.h).\n"
+                "          (src/delaunay/delaunay_traits.h).\n"
                 "Peak MiB = the forked child's whole ru_maxrss (volume included). VDB volumeToMesh runs on TBB's default threads.\n");
 
     struct Totals {

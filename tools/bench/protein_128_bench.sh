@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 7's targets are stated on "protein volumes of ~128^3"; ../shared/data has none that size.
+# The speed targets are stated on "protein volumes of ~128^3"; ../shared/data has none that size.
 # This makes one (the blurred-atom density of PDB 1HPV at 0.45 A: 125 x 107 x 144, the same
 # construction as the shared 1hpv_blobby_1A at 1 A) and runs compare_bench on it.
 #
@@ -15,7 +15,7 @@ pdb=/usr/share/pymol/data/tut/1hpv.pdb
 [ -f "$pdb" ] || { echo "protein_128_bench.sh: $pdb missing (apt-get install pymol-data)" >&2; exit 2; }
 mkdir -p "$dir/protein"
 if [ ! -f "$dir/protein/1hpv_blurred_0.45A.vdb" ]; then
-  /usr/bin/python3 "$here/tools/bench/blurred_atoms_mrc.py" "$pdb" 0.45 "$dir/1hpv_blurred_0.45A.mrc"
+  /usr/bin/python3 "$here/tools/data/blurred_atoms_mrc.py" "$pdb" 0.45 "$dir/1hpv_blurred_0.45A.mrc"
   "$here/build/bin/isodel" convert "$dir/1hpv_blurred_0.45A.mrc" -o "$dir/protein/1hpv_blurred_0.45A.vdb"
 fi
 cat > "$dir/manifest.json" <<'J'

@@ -1,4 +1,4 @@
-// tet_quality_vs_mesh3: issue 6's comparison of DELVOLMESH's tetrahedra with CGAL Mesh_3 (with
+// tet_quality_vs_mesh3: the comparison of DELVOLMESH's tetrahedra with CGAL Mesh_3 (with
 // perturb and exude) on the same volume at the same eps. Both mesh the inside of {F = v} for the
 // trilinear interpolant F (Mesh_3 through an implicit domain that evaluates F exactly as isodel
 // does, octree/segment_walk.h's phi_at), with facet_distance = eps; Mesh_3's other criteria are
@@ -145,7 +145,7 @@ int main(int argc, char** argv)
         return 2;
     }
     // isodel: min_Del is the Delaunay tets' smallest angle, min_dih/max_dih after improvement
-    // (src/mesher/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees.
+    // (src/volume/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees.
     std::printf("isodel facet angle: %s\n", facet_angle > 0 ? std::to_string(facet_angle).c_str() : "none");
     std::printf("%-34s %9s %9s %9s %9s %7s %7s | %9s %9s %9s %7s %7s\n", "volume (eps 0.5 voxel, inside)", "isodel",
                 "min_Del", "min_dih", "max_dih", "<10deg", "s", "Mesh_3", "min_dih", "max_dih", "<10deg", "s");

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <mutex>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -23,6 +24,8 @@ extern "C" void on_sigint(int) { g_sigint.store(true); }
 
 struct ProgressReporter::Impl {
     bool show = false;
+    bool trace = false;
+    std::mutex log_mutex; // trace lines come from worker threads too
     std::string stage;
     std::chrono::steady_clock::time_point stage_start, last_print;
     bool printed = false;
@@ -40,8 +43,9 @@ struct ProgressReporter::Impl {
     }
 };
 
-ProgressReporter::ProgressReporter(bool quiet) : impl_(std::make_unique<Impl>())
+ProgressReporter::ProgressReporter(bool quiet, bool trace) : impl_(std::make_unique<Impl>())
 {
+    impl_->trace = trace;
     // Progress only for a person watching: never into a log file or a pipe.
     impl_->show = !quiet && ::isatty(2);
     g_sigint.store(false);
@@ -81,6 +85,15 @@ bool ProgressReporter::wasInterrupted(int percent)
         std::chrono::steady_clock::now() - impl_->last_print > std::chrono::milliseconds(100))
         impl_->print(percent);
     return g_sigint.load();
+}
+
+void ProgressReporter::log(const char* message)
+{
+    if (!impl_->trace) return;
+    std::lock_guard<std::mutex> lock(impl_->log_mutex);
+    if (impl_->printed) std::fprintf(stderr, "\r\033[K"); // not on top of the progress line
+    std::fprintf(stderr, "%s\n", message);
+    std::fflush(stderr);
 }
 
 void add_input_options(CLI::App& cmd, InputOptions& in)

@@ -17,14 +17,16 @@ namespace isodel::cli {
 enum Exit : int { kOk = 0, kFailed = 1, kBadInput = 2, kInterrupted = 130 };
 
 /// Progress on stderr (stage, percent, elapsed) only when stderr is a terminal and not --quiet;
-/// also the Ctrl-C hook: wasInterrupted() returns true once SIGINT was received.
+/// also the Ctrl-C hook: wasInterrupted() returns true once SIGINT was received. With \p trace
+/// the library's trace lines (Interrupter::log) go to stderr, one a line.
 class ProgressReporter final : public Interrupter {
 public:
-    explicit ProgressReporter(bool quiet);
+    explicit ProgressReporter(bool quiet, bool trace = false);
     ~ProgressReporter() override;
     void start(const char* name) override;
     void end() override;
     bool wasInterrupted(int percent = -1) override;
+    void log(const char* message) override;
 
 private:
     struct Impl;

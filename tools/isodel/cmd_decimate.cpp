@@ -1,4 +1,4 @@
-// `isodel decimate`: coarsen a volume into an adaptive grid (issue 3; octree/decimate.h).
+// `isodel decimate`: coarsen a volume into an adaptive grid (paper Property IV; octree/decimate.h).
 #include "cli_common.h"
 
 #include <isodel/adaptive.h>

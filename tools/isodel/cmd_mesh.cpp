@@ -22,6 +22,7 @@ struct MeshCliOptions {
     int blocks = 0;
     std::size_t max_points = 0;
     bool quiet = false;
+    bool trace = false;
     bool snap = false;
     bool certify = false;
     bool no_improve = false;
@@ -65,8 +66,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                   "Verify the surface before writing it (topology against an independent computation, eps, "
                   "manifold, Delaunay); exit 1 and write nothing if it fails");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
+    cmd->add_flag("--trace", o->trace, "Print the mesher's trace on stderr: one line per refinement round and check");
     cmd->callback([o, &exit_code] {
-        if (!(o->eps >= 0) || !(o->eps_voxels > 0)) throw InvalidInput("--eps/--eps-voxels must be positive");
         // Refuse unknown output formats before doing any work.
         const std::string ext = io::extension_of(o->out);
         if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
@@ -74,18 +75,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         if (!o->tets.empty() && !is_tet_mesh_path(o->tets))
             throw InvalidInput(o->tets + ": unknown tetrahedral mesh format '" + io::extension_of(o->tets) +
                                "' (use .mesh, .vtu or .msh)");
-        ProgressReporter progress(o->quiet);
-        const auto t0 = std::chrono::steady_clock::now();
-        progress.start("read");
-        const Volume vol = read_input(o->in);
-        check_isovalue(vol, o->iso);
-        progress.end();
-        const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
         MeshOptions mo;
         mo.isovalue = o->iso;
-        mo.inside = o->inside.empty() ? vol.default_inside
-                                      : (o->inside == "above" ? Inside::Above : Inside::Below);
         mo.eps = o->eps;
         mo.eps_voxels = o->eps_voxels;
         mo.threads = o->threads;
@@ -99,6 +90,17 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
         mo.improve_tets = !o->no_improve;
         mo.facet_angle_deg = o->facet_angle;
+        check_mesh_options(mo); // before any work
+
+        ProgressReporter progress(o->quiet, o->trace);
+        const auto t0 = std::chrono::steady_clock::now();
+        progress.start("read");
+        const Volume vol = read_input(o->in);
+        check_isovalue(vol, o->iso);
+        progress.end();
+        const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        mo.inside = o->inside.empty() ? vol.default_inside
+                                      : (o->inside == "above" ? Inside::Above : Inside::Below);
         // An adaptive file (`isodel decimate`): mesh on its leaves (Property IV).
         MeshResult res;
         try {

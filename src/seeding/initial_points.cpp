@@ -1,0 +1,88 @@
+#include "seeding/initial_points.h"
+
+#include "seeding/adaptive_points.h"
+#include "seeding/snap_edge_points.h"
+#include "seeding/thin_tubes.h"
+#include "seeding/tunnel_shoulders.h"
+#include "octree/balance.h"
+#include "octree/edge_crossings.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+
+namespace isodel::mesher {
+namespace {
+
+Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
+
+} // namespace
+
+InitialPoints initial_points(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
+                             const octree::AdaptiveGrid::Reader* leaves, bool use_snap, double snap_radius,
+                             const std::vector<SeedPoint>& seeds, MeshStats& st, Interrupter* interrupter)
+{
+    InitialPoints out;
+    const octree::FaceSlabs& slabs = field.face_slabs();
+    InterruptScope scope(interrupter, "points");
+    octree::EdgeCrossings e = octree::edge_crossings(field);
+    scope.check(50);
+    if (adaptive) {
+        // E on leaf edges only; G from the leaves (adaptive_points.h).
+        e.points.erase(std::remove_if(e.points.begin(), e.points.end(),
+                                      [&](const octree::EdgePoint& p) { return !on_leaf_edge(*leaves, p.lower, p.axis); }),
+                       e.points.end());
+        const auto uniform = octree::protective_layer(field, openvdb::MaskGrid()); // radius and bounds only
+        out.layer.radius = uniform.radius;
+        out.layer.bound_e = std::max(uniform.bound_e, octree::voronoi_bound_e(adaptive->k()));
+        out.layer.bound_n = std::max(uniform.bound_n, octree::voronoi_bound_n(adaptive->k()));
+        out.layer.points = adaptive_protective_layer(*adaptive, *e.crossed_cells, out.layer.radius);
+    } else {
+        out.layer = octree::protective_layer(field, *e.crossed_cells);
+    }
+    for (auto it = e.crossed_cells->cbeginValueOn(); it; ++it) out.crossed_cells.push_back(it.getCoord());
+    st.e_points = e.points.size();
+    st.g_points = out.layer.points.size();
+    st.bound_e = out.layer.bound_e;
+    st.bound_n = out.layer.bound_n;
+    out.points.reserve(e.points.size() + out.layer.points.size());
+    std::uint32_t id = 0;
+    // Section 5 (--snap): E points gathered around a sample give way to the sample.
+    SnapResult snap;
+    if (use_snap) {
+        // On an adaptive grid only G points may take the place of E points.
+        std::vector<openvdb::Coord> g_sorted;
+        std::function<bool(const openvdb::Coord&)> in_g;
+        if (adaptive) {
+            g_sorted = out.layer.points;
+            std::sort(g_sorted.begin(), g_sorted.end());
+            in_g = [&](const openvdb::Coord& g) { return std::binary_search(g_sorted.begin(), g_sorted.end(), g); };
+        }
+        snap = snap_edge_points(e.points, field, snap_radius, in_g);
+    }
+    for (const auto& g : out.layer.points)
+        out.points.push_back({to_point(field.index_to_world(g.asVec3d())),
+                              {id++, snap.is_snapped_grid_point(g) ? PointKind::Snapped : PointKind::Grid}});
+    for (std::size_t i = 0; i < e.points.size(); ++i) {
+        if (use_snap && snap.snapped[i]) {
+            ++st.snapped;
+            continue;
+        }
+        out.points.push_back({to_point(field.index_to_world(slabs.from_sample(e.points[i].index_pos))), {id++, PointKind::Edge}});
+    }
+    auto tubes = thin_tube_points(field, out.crossed_cells);
+    const auto necks = tunnel_shoulder_points(field, out.crossed_cells);
+    tubes.insert(tubes.end(), necks.begin(), necks.end());
+    st.n_topology += tubes.size();
+    for (const auto& p : tubes) out.points.push_back({to_point(field.index_to_world(slabs.from_sample(p))), {id++, PointKind::Topology}});
+    for (const SeedPoint& s : seeds) {
+        ++(s.kind == PointKind::Geometry ? st.n_geometry : st.n_topology);
+        out.points.push_back({Point(s.p[0], s.p[1], s.p[2]), {id++, s.kind}});
+    }
+    out.g_mask = std::make_unique<openvdb::MaskGrid>();
+    auto acc = out.g_mask->getAccessor();
+    for (const auto& g : out.layer.points) acc.setValueOn(g);
+    return out;
+}
+
+} // namespace isodel::mesher

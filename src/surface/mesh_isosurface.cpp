@@ -1,0 +1,137 @@
+// The public entry points of DELSURFMESH (include/isodel/mesh.h): a dense or adaptive volume
+// in, read as a SampleField; the run itself is mesh_field (mesh_field.cpp), or partitioned
+// meshing's blocks and merge (partitioned_meshing.h); with MeshOptions::certify the surface is
+// verified before it is returned.
+#include "surface/final_points.h"
+#include "surface/mesh_field.h"
+#include "surface/partitioned_meshing.h"
+#include "octree/adaptive_vdb_format.h"
+#include "octree/resample.h"
+#include "octree/sample_field.h"
+
+#include <isodel/adaptive.h>
+#include <isodel/errors.h>
+#include <isodel/mesh.h>
+#include <isodel/verify.h>
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+#include <string>
+
+namespace isodel {
+using namespace mesher;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+MeshResult mesh_once(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
+                     const MeshOptions& options, Interrupter* interrupter, std::vector<std::array<double, 3>>* points)
+{
+    if (options.block_voxels > 0) {
+        if (adaptive) throw InvalidInput("partitioned meshing (block_voxels) is for dense grids only");
+        if (points) throw InvalidInput("partitioned meshing (block_voxels) does not keep the final point set");
+        return mesh_partitioned(field, options, interrupter);
+    }
+    FieldRun run;
+    run.field = &field;
+    run.adaptive = adaptive;
+    run.final_points = points;
+    return mesh_field(run, options, interrupter);
+}
+
+/// Why \p r failed verification, in a few words.
+std::string verify_failure(const VerifyReport& r)
+{
+    std::ostringstream os;
+    auto genera = [](const auto& comps) {
+        std::ostringstream g;
+        g << comps.size() << " components, genus [";
+        for (std::size_t i = 0; i < comps.size() && i < 8; ++i) g << (i ? " " : "") << comps[i].genus;
+        g << (comps.size() > 8 ? " ...]" : "]");
+        return g.str();
+    };
+    if (!r.mesh_ok()) os << "not a closed oriented manifold without self-intersections; ";
+    if (!r.topology_ok()) os << "M has " << genera(r.mesh.components) << ", Sigma " << genera(r.reference.components) << "; ";
+    if (!r.hausdorff_ok()) os << "Hausdorff " << std::max(r.hausdorff.mesh_to_surface.max_voxels, r.hausdorff.surface_to_mesh.max_voxels)
+                              << " voxel > eps; ";
+    if (!r.delaunay_ok()) os << r.delaunay.non_delaunay << " triangles not Delaunay; ";
+    std::string s = os.str();
+    if (s.size() >= 2) s.resize(s.size() - 2);
+    return s;
+}
+
+MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive, const MeshOptions& options,
+                     Interrupter* interrupter, std::vector<std::array<double, 3>>* points = nullptr)
+{
+    // Share the grid without copying it: the field keeps a non-owning pointer for the call.
+    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
+    const Inside inside = inside_side(grid, options);
+    const octree::SampleField field(gptr, options.isovalue, inside);
+    MeshResult r = mesh_once(field, adaptive, options, interrupter, points);
+    if (!options.certify) return r;
+    const auto t0 = Clock::now();
+    VerifyOptions vo;
+    vo.isovalue = options.isovalue;
+    vo.inside = inside;
+    vo.eps = r.stats.eps_world;
+    const VerifyReport rep = verify_surface(grid, r.surface, vo);
+    // Near-critical data whose reference topology no refinement settles: nothing to certify
+    // against (isodel verify reports it as "undetermined").
+    if (!rep.reference.determined)
+        throw GuaranteeViolated("certify: the reference topology of Sigma stays undetermined (a saddle of F "
+                                "too close to v for the verifier's refinements); the surface cannot be certified");
+    if (!rep.passed()) throw GuaranteeViolated("certify: the mesh does not verify: " + verify_failure(rep));
+    r.stats.certify_attempts = 1;
+    r.stats.seconds["certify"] = since(t0);
+    r.stats.seconds["total"] += r.stats.seconds["certify"];
+    return r;
+}
+
+} // namespace
+
+void check_mesh_options(const MeshOptions& o)
+{
+    const auto refuse = [](const std::string& what) { throw InvalidInput(what); };
+    const auto num = [](double x) {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+    };
+    if (!(o.eps >= 0) || !std::isfinite(o.eps)) refuse("eps must be positive and finite (got " + num(o.eps) + ")");
+    if (o.eps == 0 && (!(o.eps_voxels > 0) || !std::isfinite(o.eps_voxels)))
+        refuse("eps_voxels must be positive and finite (got " + num(o.eps_voxels) + ")");
+    if (o.threads < 0) refuse("threads must be 0 (all) or positive (got " + std::to_string(o.threads) + ")");
+    if (o.max_rounds < 1) refuse("max_rounds must be at least 1 (got " + std::to_string(o.max_rounds) + ")");
+    if (o.block_voxels < 0) refuse("block_voxels must be 0 (off) or positive (got " + std::to_string(o.block_voxels) + ")");
+    // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
+    if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
+        refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");
+}
+
+MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
+{
+    return mesh_grid(grid, nullptr, options, interrupter);
+}
+
+MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& options, Interrupter* interrupter)
+{
+    if (!volume.samples) throw InvalidInput("adaptive volume without samples");
+    const auto t0 = Clock::now();
+    const octree::AdaptiveGrid g = octree::to_adaptive_grid(volume);
+    const openvdb::FloatGrid::Ptr dense = octree::resample_dense(g);
+    const double t_resample = since(t0);
+    MeshResult r = mesh_grid(*dense, g.max_level() > 0 ? &g : nullptr, options, interrupter);
+    r.stats.seconds["resample"] = t_resample;
+    r.stats.seconds["total"] += t_resample;
+    return r;
+}
+
+MeshResult mesher::mesh_keeping_points(const openvdb::FloatGrid& grid, const MeshOptions& options,
+                                       std::vector<std::array<double, 3>>& points, Interrupter* interrupter)
+{
+    return mesh_grid(grid, nullptr, options, interrupter, &points);
+}
+
+} // namespace isodel

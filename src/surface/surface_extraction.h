@@ -1,0 +1,15 @@
+#pragma once
+// Internal: DELSURFMESH step 5, output Del(E u G u N)|Sigma as an indexed, consistently oriented
+// triangle mesh (normals toward the outside region), plus its topology per component.
+#include "closed_ball/restricted_facets.h"
+
+#include <isodel/mesh.h>
+
+namespace isodel::mesher {
+
+SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache);
+
+/// Components of a closed triangle mesh with their Euler characteristic and genus.
+std::vector<ComponentTopology> surface_topology(const SurfaceMesh& mesh);
+
+} // namespace isodel::mesher
