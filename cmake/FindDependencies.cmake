@@ -12,6 +12,9 @@ find_package(TBB REQUIRED)
 find_package(CGAL REQUIRED)
 find_package(Eigen3 REQUIRED NO_MODULE)
 find_package(ZLIB REQUIRED)
+# JSON reading and writing (--stats, verify --json, info --json, the shared data's manifest):
+# header-only, Debian's nlohmann-json3-dev.
+find_package(nlohmann_json 3 REQUIRED)
 if(ISODEL_BUILD_TOOLS)
   find_package(CLI11 REQUIRED)
 endif()

@@ -75,18 +75,23 @@ std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& l
     CandidateBlocks out(lower_ends);
     // (a) the leaf nodes.
     for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) out.add(leaf->getNodeBoundingBox());
-    // (b) the tiles: above the leaf level only (a leaf's values are (a)).
-    std::vector<CoordBBox> inside_tiles;
+    // (b) the tiles (above the leaf level: a leaf's values are (a)) on the other side of v than
+    // the background. A tile on the background's side can meet a sample of the other side only
+    // in a leaf or in a tile of the other side, whose blocks are scanned anyway; skipping it
+    // matters, since level sets keep huge tiles of the background value.
+    const bool background_inside = field.phi_of_value(tree.background()) > 0;
+    std::vector<CoordBBox> other_side_tiles;
     auto tile = tree.cbeginValueAll();
     tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
     for (; tile; ++tile) {
+        if ((field.phi_of_value(*tile) > 0) == background_inside) continue;
         CoordBBox b;
         tile.getBoundingBox(b);
         out.add_faces(b);
-        if (field.phi_of_value(*tile) > 0) inside_tiles.push_back(b);
+        other_side_tiles.push_back(b);
     }
-    // (c) the faces of the domain and of the active box, where the sample inside may be inside.
-    const bool background_inside = field.phi_of_value(tree.background()) > 0;
+    // (c) the faces of the domain and of the active box, where the sample inside may be inside:
+    // everywhere if the background is, else in leaves (a) and in the tiles of (b).
     for (const CoordBBox& region : {field.domain(), field.lattice()})
         for (int a = 0; a < 3; ++a)
             for (const int at : {region.min()[a], region.max()[a]}) {
@@ -96,7 +101,7 @@ std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& l
                     out.add(face);
                     continue;
                 }
-                for (CoordBBox t : inside_tiles) {
+                for (CoordBBox t : other_side_tiles) {
                     t.intersect(face);
                     if (!t.empty()) out.add(t);
                 }

@@ -11,6 +11,7 @@
 ///  - triangle quality.
 /// The function F and its conventions (ties, domain) are those of octree/sample_field.h.
 /// Plain structs only (no CGAL types) so callers need not see CGAL.
+#include <isodel/stats.h>
 #include <isodel/surface_mesh.h>
 #include <isodel/volume.h>
 
@@ -48,12 +49,27 @@ struct VerifyOptions {
     bool require_determined_topology = false;
 };
 
-/// Topology of one connected component of a closed surface.
-struct VerifyComponent {
-    int euler = 0;
-    int genus = 0;
-    std::size_t triangles = 0;
+/// The verifier's components are the mesher's struct (include/isodel/stats.h). The old name stays
+/// until src/verify/mesh_topology.cpp uses ComponentTopology; new code should not use it.
+using VerifyComponent = ComponentTopology;
+
+/// Check 1's homeomorphism verdict (VerifyReport::topology_verdict).
+enum class TopologyVerdict {
+    Fail,        ///< M is not a 2-manifold, or its genera differ from the reference's
+    Pass,        ///< M is a 2-manifold with the reference's multiset of genera
+    Undetermined ///< the reference topology was not determined (refinements disagree)
 };
+
+/// "fail", "pass", "undetermined": the words of the JSON report.
+inline const char* to_string(TopologyVerdict verdict)
+{
+    switch (verdict) {
+    case TopologyVerdict::Pass: return "pass";
+    case TopologyVerdict::Undetermined: return "undetermined";
+    case TopologyVerdict::Fail: break;
+    }
+    return "fail";
+}
 
 struct ReferenceTopologyReport {
     bool determined = false;
@@ -64,7 +80,7 @@ struct ReferenceTopologyReport {
     /// Each refinement tried, with the sorted genera it produced.
     std::vector<int> refinements;
     std::vector<std::vector<int>> genera;
-    std::vector<VerifyComponent> components; ///< of the finest agreeing refinement
+    std::vector<ComponentTopology> components; ///< of the finest agreeing refinement
     double seconds = 0.0;
 };
 
@@ -81,7 +97,7 @@ struct MeshTopologyReport {
     bool closed = false, manifold = false, oriented = false, outward = false;
     bool self_intersection_checked = false;
     std::size_t self_intersecting_pairs = 0;
-    std::vector<VerifyComponent> components; ///< sorted by genus, then size
+    std::vector<ComponentTopology> components; ///< sorted by genus, then size
 };
 
 struct DistanceStats {
@@ -145,12 +161,13 @@ struct QualityReport {
 
 struct VerifyReport {
     double effective_isovalue = 0.0;
-    std::string inside;
+    Inside inside = Inside::Above;           ///< the side verified as inside (VerifyOptions::inside)
     double voxel = 0.0;                      ///< smallest voxel edge (world)
     ReferenceTopologyReport reference;
     MeshTopologyReport mesh;
-    /// "pass", "fail" or "undetermined" (reference not determined).
-    std::string topology_verdict;
+    /// Undetermined when the reference is not determined; it fails verification only with
+    /// require_determined_topology.
+    TopologyVerdict topology_verdict = TopologyVerdict::Fail;
     bool require_determined_topology = false;
     HausdorffReport hausdorff;
     DelaunayReport delaunay;
@@ -165,7 +182,7 @@ struct VerifyReport {
     bool delaunay_ok() const { return !delaunay.checked || delaunay.passed; }
     bool tets_ok() const { return !tets.checked || tets.passed; }
     bool passed() const { return mesh_ok() && topology_ok() && hausdorff_ok() && delaunay_ok() && tets_ok(); }
-    std::string to_json() const;
+    std::string to_json() const; ///< enums written as their to_string words
     std::string summary() const; ///< readable multi-line text
 };
 

@@ -18,7 +18,8 @@ namespace isodel {
 /// Which side of the isovalue is the solid.
 enum class Inside { Above, Below };
 
-const char* to_string(Inside inside);
+/// "above" or "below".
+inline const char* to_string(Inside inside) { return inside == Inside::Above ? "above" : "below"; }
 
 /// The inside side when the caller does not say: Below for level sets (OpenVDB's convention,
 /// negative inside), Above for everything else (densities, fog volumes, maps).

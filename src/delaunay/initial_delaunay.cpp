@@ -91,6 +91,28 @@ Vertex_handle copy_into(ParallelDelaunay& src, Delaunay& dst)
 // Below this many points sequential insertion is quick, and the lock grid and the copy are not
 // worth setting up. Not tuned: the meshes are the same either way.
 constexpr std::size_t kParallelMin = 20000;
+// The parallel insertion locks the cells of a kLockCells^3 grid over the points' box (as CGAL's
+// examples); it pays only while the points spread over enough of them.
+constexpr int kLockCells = 50;
+constexpr std::size_t kParallelMinLockCells = 1000;
+
+/// How many cells of the lock grid over \p box hold a point.
+std::size_t occupied_lock_cells(const std::vector<std::pair<Point, VertexInfo>>& points, const CGAL::Bbox_3& box)
+{
+    std::vector<std::uint32_t> cells;
+    cells.reserve(points.size());
+    for (const auto& [p, info] : points) {
+        std::uint32_t key = 0;
+        for (int a = 0; a < 3; ++a) {
+            const double extent = box.max(a) - box.min(a);
+            const int i = extent > 0 ? std::min(kLockCells - 1, int((p[a] - box.min(a)) / extent * kLockCells)) : 0;
+            key = key * kLockCells + std::uint32_t(i);
+        }
+        cells.push_back(key);
+    }
+    std::sort(cells.begin(), cells.end());
+    return std::size_t(std::unique(cells.begin(), cells.end()) - cells.begin());
+}
 
 } // namespace
 
@@ -104,7 +126,13 @@ void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, Ver
     }
     CGAL::Bbox_3 box = points.front().first.bbox();
     for (const auto& p : points) box += p.first.bbox();
-    ParallelDelaunay::Lock_data_structure locks(box, 50); // 50^3 lock cells, as CGAL's examples
+    if (occupied_lock_cells(points, box) < kParallelMinLockCells) {
+        // Sparse data (shapes far apart in a large box): the points fall into a few lock cells,
+        // and threads that insert into the same cell only retry each other's work.
+        dt.insert(points.begin(), points.end());
+        return;
+    }
+    ParallelDelaunay::Lock_data_structure locks(box, kLockCells);
     ParallelDelaunay pdt(points.begin(), points.end(), &locks);
     dt.set_infinite_vertex(copy_into(pdt, dt));
 }

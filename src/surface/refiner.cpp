@@ -251,13 +251,13 @@ ViolationReport Refiner::hausdorff_distances()
 ViolationReport Refiner::facet_angles()
 {
     ViolationReport rep;
-    if (options_.facet_angle_deg <= 0 || !st_.facet_angle_stop.empty()) return rep;
+    if (options_.facet_angle_deg <= 0 || st_.facet_angle_stop != FacetAngleStop::Off) return rep;
     StepTimer timer{st_.refinement_seconds["facet_angle"]};
     // Optional triangle quality, last: every guarantee holds here, so stopping it at its bound
     // leaves a certified mesh (facet_angle_stop says why it stopped).
     rep.candidates = facet_angle_violations(restricted_facets(), options_.facet_angle_deg, in_.keep);
-    if (rep.candidates.empty()) st_.facet_angle_stop = "met";
-    else if (st_.n_facet_angle >= max_angle_points_) st_.facet_angle_stop = "point bound";
+    if (rep.candidates.empty()) st_.facet_angle_stop = FacetAngleStop::Met;
+    else if (st_.n_facet_angle >= max_angle_points_) st_.facet_angle_stop = FacetAngleStop::PointBound;
     else rep.kind = Violation::FacetAngle;
     if (rep.kind == Violation::None) rep.candidates.clear();
     return rep;
@@ -348,7 +348,7 @@ void Refiner::run(bool stop_without_progress)
         // checks everything again.
         if (ins.inserted.empty() && stop_without_progress) break;
         if (ins.inserted.empty() && rep.kind == Violation::FacetAngle) {
-            st_.facet_angle_stop = "no progress"; // its candidates are vertices already
+            st_.facet_angle_stop = FacetAngleStop::NoProgress; // its candidates are vertices already
             continue;
         }
         if (ins.inserted.empty()) {

@@ -62,25 +62,35 @@ bool link_is_cycle(std::vector<std::pair<std::int32_t, std::int32_t>>& link)
     return steps == link.size();
 }
 
-} // namespace
-
-MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_component)
+/// \throw InvalidInput a triangle of \p mesh names a vertex it does not have.
+void check_vertex_indices(const SurfaceMesh& mesh)
 {
-    MeshTopologyReport rep;
-    const std::size_t nv = mesh.vertices.size(), nf = mesh.triangles.size();
-    rep.vertices = nv;
-    rep.triangles = nf;
+    const std::size_t nv = mesh.vertices.size();
     for (const auto& t : mesh.triangles)
         for (auto v : t)
             if (v < 0 || std::size_t(v) >= nv)
                 throw InvalidInput("verify: mesh triangle references vertex " + std::to_string(v) +
                                    " of " + std::to_string(nv));
+}
 
+/// What the per-triangle scan found, for the edge and vertex checks after it.
+struct TriangleFlags {
+    std::vector<bool> degenerate; ///< per triangle; left out of the edges and links
+    std::vector<bool> used;       ///< per vertex: corner of some triangle
+};
+
+/// Flags degenerate triangles and used vertices, and counts into \p rep the degenerate and
+/// duplicate triangles and the unreferenced vertices.
+TriangleFlags scan_triangles(const SurfaceMesh& mesh, MeshTopologyReport& rep)
+{
+    const std::size_t nv = mesh.vertices.size(), nf = mesh.triangles.size();
     auto point = [&](std::int32_t v) {
         const auto& p = mesh.vertices[std::size_t(v)];
         return K::Point_3(p[0], p[1], p[2]);
     };
-    std::vector<bool> degenerate(nf, false), used(nv, false);
+    TriangleFlags flags{std::vector<bool>(nf, false), std::vector<bool>(nv, false)};
+    std::vector<bool>& degenerate = flags.degenerate;
+    std::vector<bool>& used = flags.used;
     std::vector<std::array<std::int32_t, 3>> sorted(nf);
     for (std::size_t f = 0; f < nf; ++f) {
         const auto& t = mesh.triangles[f];
@@ -98,8 +108,14 @@ MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_
         std::sort(s.begin(), s.end());
         for (std::size_t i = 1; i < s.size(); ++i) rep.duplicate_triangles += s[i] == s[i - 1];
     }
+    return flags;
+}
 
-    // Edges: sort half-edges by undirected edge, then count.
+/// The half-edges of the non-degenerate triangles, sorted by undirected edge: each edge's
+/// half-edges are then a run.
+std::vector<HalfEdge> sorted_half_edges(const SurfaceMesh& mesh, const std::vector<bool>& degenerate)
+{
+    const std::size_t nf = mesh.triangles.size();
     std::vector<HalfEdge> he;
     he.reserve(3 * nf);
     for (std::size_t f = 0; f < nf; ++f) {
@@ -111,45 +127,58 @@ MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_
         }
     }
     std::sort(he.begin(), he.end());
-    std::size_t n_edges = 0;
+    return he;
+}
+
+/// Counts into \p rep the boundary, non-manifold and misoriented edges of \p he (sorted).
+void count_edge_faults(const std::vector<HalfEdge>& he, MeshTopologyReport& rep)
+{
     for (std::size_t i = 0; i < he.size();) {
         std::size_t j = i;
         while (j < he.size() && he[j].lo == he[i].lo && he[j].hi == he[i].hi) ++j;
-        ++n_edges;
         const std::size_t c = j - i;
         if (c == 1) ++rep.boundary_edges;
         else if (c > 2) ++rep.nonmanifold_edges;
         else if (he[i].forward == he[i + 1].forward) ++rep.misoriented_edges;
         i = j;
     }
+}
 
-    // Vertex links.
+/// Counts into \p rep the used vertices whose link (over the non-degenerate triangles) is not
+/// one cycle.
+void count_nonmanifold_vertices(const SurfaceMesh& mesh, const TriangleFlags& flags, MeshTopologyReport& rep)
+{
+    const std::size_t nv = mesh.vertices.size(), nf = mesh.triangles.size();
     std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> links(nv);
     for (std::size_t f = 0; f < nf; ++f) {
-        if (degenerate[f]) continue;
+        if (flags.degenerate[f]) continue;
         const auto& t = mesh.triangles[f];
         for (int q = 0; q < 3; ++q)
             links[std::size_t(t[std::size_t(q)])].emplace_back(t[std::size_t((q + 1) % 3)], t[std::size_t((q + 2) % 3)]);
     }
     for (std::size_t v = 0; v < nv; ++v)
-        if (used[v] && !link_is_cycle(links[v])) ++rep.nonmanifold_vertices;
+        if (flags.used[v] && !link_is_cycle(links[v])) ++rep.nonmanifold_vertices;
+}
 
-    rep.closed = rep.boundary_edges == 0 && rep.nonmanifold_edges == 0 && nf > 0;
-    rep.manifold = rep.closed && rep.nonmanifold_vertices == 0 && rep.degenerate_triangles == 0 &&
-                   rep.duplicate_triangles == 0;
-    rep.oriented = rep.manifold && rep.misoriented_edges == 0;
-
-    // Components: union-find of vertices through triangles; chi = V - E + F per component.
-    std::vector<std::int32_t> p(nv);
-    std::iota(p.begin(), p.end(), 0);
-    for (const auto& t : mesh.triangles) {
-        const auto a = find(p, t[0]);
-        p[std::size_t(find(p, t[1]))] = a;
-        p[std::size_t(find(p, t[2]))] = a;
-    }
-    std::vector<int> root_comp(nv, -1);
+/// The connected components of a mesh (union-find of its vertices through its triangles), each
+/// with its vertex, edge and triangle counts; numbered in the order comp_of() first meets them.
+struct ComponentCounts {
+    std::vector<std::int32_t> p; ///< union-find parents
+    std::vector<int> root_comp;  ///< component of each root, -1 until comp_of() meets it
     std::vector<std::int64_t> V, E, F;
-    auto comp_of = [&](std::int32_t v) {
+
+    explicit ComponentCounts(const SurfaceMesh& mesh) : p(mesh.vertices.size()), root_comp(mesh.vertices.size(), -1)
+    {
+        std::iota(p.begin(), p.end(), 0);
+        for (const auto& t : mesh.triangles) {
+            const auto a = find(p, t[0]);
+            p[std::size_t(find(p, t[1]))] = a;
+            p[std::size_t(find(p, t[2]))] = a;
+        }
+    }
+
+    int comp_of(std::int32_t v)
+    {
         const auto r = std::size_t(find(p, v));
         if (root_comp[r] < 0) {
             root_comp[r] = int(V.size());
@@ -158,23 +187,40 @@ MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_
             F.push_back(0);
         }
         return root_comp[r];
-    };
+    }
+};
+
+/// The components of \p mesh with their Euler characteristic (chi = V - E + F), genus and
+/// size, in the order of their first triangle; \p tri_component receives each triangle's.
+std::vector<VerifyComponent> count_components(const SurfaceMesh& mesh, const std::vector<bool>& used,
+                                              const std::vector<HalfEdge>& he, std::vector<int>& tri_component)
+{
+    const std::size_t nv = mesh.vertices.size(), nf = mesh.triangles.size();
+    ComponentCounts cc(mesh);
     tri_component.assign(nf, 0);
     for (std::size_t f = 0; f < nf; ++f) {
-        tri_component[f] = comp_of(mesh.triangles[f][0]);
-        ++F[std::size_t(tri_component[f])];
+        tri_component[f] = cc.comp_of(mesh.triangles[f][0]);
+        ++cc.F[std::size_t(tri_component[f])];
     }
     for (std::size_t v = 0; v < nv; ++v)
-        if (used[v]) ++V[std::size_t(comp_of(std::int32_t(v)))];
+        if (used[v]) ++cc.V[std::size_t(cc.comp_of(std::int32_t(v)))];
     for (std::size_t i = 0; i < he.size(); ++i)
-        if (i == 0 || he[i].lo != he[i - 1].lo || he[i].hi != he[i - 1].hi) ++E[std::size_t(comp_of(he[i].lo))];
+        if (i == 0 || he[i].lo != he[i - 1].lo || he[i].hi != he[i - 1].hi) ++cc.E[std::size_t(cc.comp_of(he[i].lo))];
 
-    std::vector<VerifyComponent> comps(V.size());
-    for (std::size_t c = 0; c < V.size(); ++c) {
-        comps[c].euler = int(V[c] - E[c] + F[c]);
+    std::vector<VerifyComponent> comps(cc.V.size());
+    for (std::size_t c = 0; c < cc.V.size(); ++c) {
+        comps[c].euler = int(cc.V[c] - cc.E[c] + cc.F[c]);
         comps[c].genus = (2 - comps[c].euler) / 2;
-        comps[c].triangles = std::size_t(F[c]);
+        comps[c].triangles = std::size_t(cc.F[c]);
     }
+    return comps;
+}
+
+/// Appends \p comps to rep.components sorted by genus, then size, and renumbers
+/// \p tri_component to match.
+void rank_components(const std::vector<VerifyComponent>& comps, MeshTopologyReport& rep,
+                     std::vector<int>& tri_component)
+{
     std::vector<int> order(comps.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int a, int b) {
@@ -188,7 +234,33 @@ MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_
         rep.components.push_back(comps[std::size_t(order[i])]);
     }
     for (auto& c : tri_component) c = rank[std::size_t(c)];
-    (void)n_edges;
+}
+
+} // namespace
+
+MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_component)
+{
+    MeshTopologyReport rep;
+    const std::size_t nv = mesh.vertices.size(), nf = mesh.triangles.size();
+    rep.vertices = nv;
+    rep.triangles = nf;
+    check_vertex_indices(mesh);
+
+    const TriangleFlags flags = scan_triangles(mesh, rep);
+    // Edges: sort half-edges by undirected edge, then count.
+    const std::vector<HalfEdge> he = sorted_half_edges(mesh, flags.degenerate);
+    count_edge_faults(he, rep);
+    // Vertex links.
+    count_nonmanifold_vertices(mesh, flags, rep);
+
+    rep.closed = rep.boundary_edges == 0 && rep.nonmanifold_edges == 0 && nf > 0;
+    rep.manifold = rep.closed && rep.nonmanifold_vertices == 0 && rep.degenerate_triangles == 0 &&
+                   rep.duplicate_triangles == 0;
+    rep.oriented = rep.manifold && rep.misoriented_edges == 0;
+
+    // Components: union-find of vertices through triangles; chi = V - E + F per component.
+    const std::vector<VerifyComponent> comps = count_components(mesh, flags.used, he, tri_component);
+    rank_components(comps, rep, tri_component);
     return rep;
 }
 

@@ -162,7 +162,7 @@ SlabPlanes near_critical_planes(const TrilinearField& field, const std::vector<C
 }
 
 /// Components of the marching-tetrahedra surface at refinement R, sorted by (genus, triangles).
-std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std::vector<Coord>& cells,
+std::vector<ComponentTopology> topology_at(const TrilinearField& field, const std::vector<Coord>& cells,
                                          const Coord& base, int R, const SlabPlanes& planes)
 {
     KeyMap ids;
@@ -229,23 +229,23 @@ std::vector<VerifyComponent> topology_at(const TrilinearField& field, const std:
     std::vector<std::int64_t> nv(uf.p.size(), 0), nf(uf.p.size(), 0);
     for (std::size_t i = 0; i < uf.p.size(); ++i) ++nv[std::size_t(uf.find(std::int32_t(i)))];
     for (std::int32_t v : tri_vertex) ++nf[std::size_t(uf.find(v))];
-    std::vector<VerifyComponent> out;
+    std::vector<ComponentTopology> out;
     for (std::size_t r = 0; r < nv.size(); ++r) {
         if (nv[r] == 0 || uf.p[r] != std::int32_t(r)) continue;
         if (nf[r] % 2 != 0) throw Error("verify: reference surface not closed (odd triangle count)");
-        VerifyComponent comp;
+        ComponentTopology comp;
         comp.euler = int(nv[r] - nf[r] / 2);
         comp.genus = (2 - comp.euler) / 2;
         comp.triangles = std::size_t(nf[r]);
         out.push_back(comp);
     }
-    std::sort(out.begin(), out.end(), [](const VerifyComponent& a, const VerifyComponent& b) {
+    std::sort(out.begin(), out.end(), [](const ComponentTopology& a, const ComponentTopology& b) {
         return a.genus != b.genus ? a.genus < b.genus : a.triangles < b.triangles;
     });
     return out;
 }
 
-std::vector<int> genera(const std::vector<VerifyComponent>& comps)
+std::vector<int> genera(const std::vector<ComponentTopology>& comps)
 {
     std::vector<int> g;
     for (const auto& c : comps) g.push_back(c.genus);
@@ -270,11 +270,11 @@ ReferenceTopologyReport reference_topology(const TrilinearField& field, int refi
     // that finer lattices no longer show, and small volumes can afford much finer lattices.
     const double per_cell = budget / double(std::max<std::size_t>(cells.size(), 1));
     refine = std::max(refine, std::min(16, int(std::floor(std::cbrt(per_cell) / 2.0))));
-    std::vector<VerifyComponent> prev = topology_at(field, cells, base, refine, planes);
+    std::vector<ComponentTopology> prev = topology_at(field, cells, base, refine, planes);
     rep.refinements.push_back(refine);
     rep.genera.push_back(genera(prev));
     for (int R = 2 * refine;; R *= 2) {
-        std::vector<VerifyComponent> cur = topology_at(field, cells, base, R, planes);
+        std::vector<ComponentTopology> cur = topology_at(field, cells, base, R, planes);
         rep.refinements.push_back(R);
         rep.genera.push_back(genera(cur));
         if (rep.genera[rep.genera.size() - 2] == rep.genera.back()) {

@@ -1,38 +1,26 @@
 // VerifyReport::to_json() and summary(): the machine-readable and the human-readable report.
 #include <isodel/verify.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace isodel {
 namespace {
 
+using Json = nlohmann::ordered_json;
+
+// Text of the summary: 9 significant digits.
 std::string num(double x)
 {
     if (!std::isfinite(x)) return "null";
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.9g", x);
     return buf;
-}
-
-std::string str(const std::string& s)
-{
-    std::string o = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') o += '\\';
-        o += c;
-    }
-    return o + "\"";
-}
-
-std::string comps(const std::vector<VerifyComponent>& cs)
-{
-    std::string o = "[";
-    for (std::size_t i = 0; i < cs.size(); ++i)
-        o += (i ? ", " : "") + std::string("{\"euler\": ") + std::to_string(cs[i].euler) +
-             ", \"genus\": " + std::to_string(cs[i].genus) + ", \"triangles\": " + std::to_string(cs[i].triangles) + "}";
-    return o + "]";
 }
 
 std::string ints(const std::vector<int>& v)
@@ -42,86 +30,126 @@ std::string ints(const std::vector<int>& v)
     return o + "]";
 }
 
-std::string dist(const DistanceStats& d)
-{
-    return "{\"samples\": " + std::to_string(d.samples) + ", \"max\": " + num(d.max) + ", \"rms\": " + num(d.rms) +
-           ", \"max_voxels\": " + num(d.max_voxels) + ", \"rms_voxels\": " + num(d.rms_voxels) +
-           ", \"argmax\": [" + num(d.argmax[0]) + ", " + num(d.argmax[1]) + ", " + num(d.argmax[2]) +
-           "], \"sample_spacing\": " + num(d.sample_spacing) + "}";
-}
-
 const char* yn(bool b) { return b ? "true" : "false"; }
 
-std::string genus_list(const std::vector<VerifyComponent>& cs)
+std::vector<int> genera(const std::vector<ComponentTopology>& cs)
 {
     std::vector<int> g;
     for (const auto& c : cs) g.push_back(c.genus);
-    return ints(g);
+    return g;
+}
+
+std::string genus_list(const std::vector<ComponentTopology>& cs) { return ints(genera(cs)); }
+
+// JSON: non-finite doubles are written as null (nlohmann's dump does that).
+Json comps(const std::vector<ComponentTopology>& cs)
+{
+    Json o = Json::array();
+    for (const auto& c : cs) o.push_back({{"euler", c.euler}, {"genus", c.genus}, {"triangles", c.triangles}});
+    return o;
+}
+
+Json dist(const DistanceStats& d)
+{
+    return {{"samples", d.samples},       {"max", d.max},
+            {"rms", d.rms},               {"max_voxels", d.max_voxels},
+            {"rms_voxels", d.rms_voxels}, {"argmax", d.argmax},
+            {"sample_spacing", d.sample_spacing}};
 }
 
 } // namespace
 
 std::string VerifyReport::to_json() const
 {
-    std::ostringstream o;
-    o << "{\n  \"passed\": " << yn(passed()) << ",\n  \"effective_isovalue\": " << num(effective_isovalue)
-      << ",\n  \"inside\": " << str(inside) << ",\n  \"voxel\": " << num(voxel);
-    o << ",\n  \"reference\": {\"determined\": " << yn(reference.determined)
-      << ", \"crossed_cells\": " << reference.crossed_cells << ", \"critical_planes\": " << reference.critical_planes << ", \"refinements\": " << ints(reference.refinements)
-      << ", \"genera\": [";
-    for (std::size_t i = 0; i < reference.genera.size(); ++i) o << (i ? ", " : "") << ints(reference.genera[i]);
-    o << "], \"components\": " << comps(reference.components) << ", \"seconds\": " << num(reference.seconds) << "}";
+    Json o;
+    o["passed"] = passed();
+    o["effective_isovalue"] = effective_isovalue;
+    o["inside"] = to_string(inside);
+    o["voxel"] = voxel;
+    o["reference"] = {{"determined", reference.determined},
+                      {"crossed_cells", reference.crossed_cells},
+                      {"critical_planes", reference.critical_planes},
+                      {"refinements", reference.refinements},
+                      {"genera", reference.genera},
+                      {"components", comps(reference.components)},
+                      {"seconds", reference.seconds}};
     const auto& m = mesh;
-    o << ",\n  \"mesh\": {\"ok\": " << yn(mesh_ok()) << ", \"vertices\": " << m.vertices << ", \"triangles\": " << m.triangles
-      << ", \"unreferenced_vertices\": " << m.unreferenced_vertices << ", \"degenerate_triangles\": " << m.degenerate_triangles
-      << ", \"duplicate_triangles\": " << m.duplicate_triangles << ", \"boundary_edges\": " << m.boundary_edges
-      << ", \"nonmanifold_edges\": " << m.nonmanifold_edges << ", \"nonmanifold_vertices\": " << m.nonmanifold_vertices
-      << ", \"misoriented_edges\": " << m.misoriented_edges << ", \"inward_components\": " << m.inward_components
-      << ", \"closed\": " << yn(m.closed) << ", \"manifold\": " << yn(m.manifold) << ", \"oriented\": " << yn(m.oriented)
-      << ", \"outward\": " << yn(m.outward) << ", \"self_intersection_checked\": " << yn(m.self_intersection_checked)
-      << ", \"self_intersecting_pairs\": " << m.self_intersecting_pairs << ", \"components\": " << comps(m.components) << "}";
-    o << ",\n  \"topology\": {\"verdict\": " << str(topology_verdict) << ", \"ok\": " << yn(topology_ok())
-      << ", \"mesh_genera\": " << genus_list(mesh.components) << ", \"reference_genera\": " << genus_list(reference.components) << "}";
+    o["mesh"] = {{"ok", mesh_ok()},
+                 {"vertices", m.vertices},
+                 {"triangles", m.triangles},
+                 {"unreferenced_vertices", m.unreferenced_vertices},
+                 {"degenerate_triangles", m.degenerate_triangles},
+                 {"duplicate_triangles", m.duplicate_triangles},
+                 {"boundary_edges", m.boundary_edges},
+                 {"nonmanifold_edges", m.nonmanifold_edges},
+                 {"nonmanifold_vertices", m.nonmanifold_vertices},
+                 {"misoriented_edges", m.misoriented_edges},
+                 {"inward_components", m.inward_components},
+                 {"closed", m.closed},
+                 {"manifold", m.manifold},
+                 {"oriented", m.oriented},
+                 {"outward", m.outward},
+                 {"self_intersection_checked", m.self_intersection_checked},
+                 {"self_intersecting_pairs", m.self_intersecting_pairs},
+                 {"components", comps(m.components)}};
+    o["topology"] = {{"verdict", to_string(topology_verdict)},
+                     {"ok", topology_ok()},
+                     {"mesh_genera", genera(mesh.components)},
+                     {"reference_genera", genera(reference.components)}};
     const auto& h = hausdorff;
-    o << ",\n  \"hausdorff\": {\"checked\": " << yn(h.checked) << ", \"passed\": " << yn(h.passed) << ", \"eps\": " << num(h.eps)
-      << ", \"eps_voxels\": " << num(h.eps_voxels) << ", \"mesh_to_surface\": " << dist(h.mesh_to_surface)
-      << ", \"surface_to_mesh\": " << dist(h.surface_to_mesh) << ", \"sigma_refine\": " << h.sigma_refine
-      << ", \"fallback_queries\": " << h.fallback_queries << ", \"unresolved\": " << h.unresolved
-      << ", \"seconds\": " << num(h.seconds) << "}";
+    o["hausdorff"] = {{"checked", h.checked},
+                      {"passed", h.passed},
+                      {"eps", h.eps},
+                      {"eps_voxels", h.eps_voxels},
+                      {"mesh_to_surface", dist(h.mesh_to_surface)},
+                      {"surface_to_mesh", dist(h.surface_to_mesh)},
+                      {"sigma_refine", h.sigma_refine},
+                      {"fallback_queries", h.fallback_queries},
+                      {"unresolved", h.unresolved},
+                      {"seconds", h.seconds}};
     const auto& d = delaunay;
-    o << ",\n  \"delaunay\": {\"checked\": " << yn(d.checked) << ", \"passed\": " << yn(d.passed) << ", \"triangles\": " << d.triangles
-      << ", \"dt_facets\": " << d.dt_facets << ", \"empty_ball_exact\": " << d.empty_ball_exact
-      << ", \"non_delaunay\": " << d.non_delaunay << ", \"degenerate\": " << d.degenerate << ", \"examples\": [";
-    for (std::size_t i = 0; i < d.examples.size(); ++i)
-        o << (i ? ", " : "") << "[" << d.examples[i][0] << ", " << d.examples[i][1] << ", " << d.examples[i][2] << "]";
-    o << "], \"seconds\": " << num(d.seconds) << "}";
+    o["delaunay"] = {{"checked", d.checked},
+                     {"passed", d.passed},
+                     {"triangles", d.triangles},
+                     {"dt_facets", d.dt_facets},
+                     {"empty_ball_exact", d.empty_ball_exact},
+                     {"non_delaunay", d.non_delaunay},
+                     {"degenerate", d.degenerate},
+                     {"examples", d.examples},
+                     {"seconds", d.seconds}};
     const auto& q = quality;
-    o << ",\n  \"quality\": {\"min_angle_histogram_10deg\": [";
-    for (std::size_t i = 0; i < q.min_angle_histogram.size(); ++i) o << (i ? ", " : "") << q.min_angle_histogram[i];
-    o << "], \"min_angle_deg\": " << num(q.min_angle_deg) << ", \"mean_min_angle_deg\": " << num(q.mean_min_angle_deg)
-      << ", \"max_radius_edge\": " << num(q.max_radius_edge) << ", \"mean_radius_edge\": " << num(q.mean_radius_edge) << "}";
+    o["quality"] = {{"min_angle_histogram_10deg", q.min_angle_histogram},
+                    {"min_angle_deg", q.min_angle_deg},
+                    {"mean_min_angle_deg", q.mean_min_angle_deg},
+                    {"max_radius_edge", q.max_radius_edge},
+                    {"mean_radius_edge", q.mean_radius_edge}};
     const auto& t = tets;
-    o << ",\n  \"tets\": {\"checked\": " << yn(t.checked);
+    Json& jt = o["tets"];
+    jt["checked"] = t.checked;
     if (t.checked) {
-        o << ", \"passed\": " << yn(t.passed) << ", \"vertices\": " << t.vertices << ", \"tets\": " << t.tets
-          << ", \"inverted\": " << t.inverted << ", \"degenerate\": " << t.degenerate
-          << ", \"unknown_region\": " << t.unknown_region << ", \"inside_tets\": " << t.inside_tets
-          << ", \"outside_tets\": " << t.outside_tets << ", \"inside_volume\": " << num(t.inside_volume)
-          << ", \"outside_volume\": " << num(t.outside_volume) << ", \"enclosed_volume\": " << num(t.enclosed_volume)
-          << ", \"volume_rel_error\": " << num(t.volume_rel_error) << ", \"boundary_faces\": " << t.boundary_faces
-          << ", \"boundary_not_in_mesh\": " << t.boundary_not_in_mesh
-          << ", \"mesh_not_in_boundary\": " << t.mesh_not_in_boundary
-          << ", \"unmatched_mesh_vertices\": " << t.unmatched_mesh_vertices
-          << ", \"min_dihedral_deg\": " << num(t.min_dihedral_deg) << ", \"max_dihedral_deg\": " << num(t.max_dihedral_deg)
-          << ", \"dihedral_histogram_10deg\": [";
-        for (std::size_t i = 0; i < t.dihedral_histogram.size(); ++i) o << (i ? ", " : "") << t.dihedral_histogram[i];
-        o << "]";
+        jt["passed"] = t.passed;
+        jt["vertices"] = t.vertices;
+        jt["tets"] = t.tets;
+        jt["inverted"] = t.inverted;
+        jt["degenerate"] = t.degenerate;
+        jt["unknown_region"] = t.unknown_region;
+        jt["inside_tets"] = t.inside_tets;
+        jt["outside_tets"] = t.outside_tets;
+        jt["inside_volume"] = t.inside_volume;
+        jt["outside_volume"] = t.outside_volume;
+        jt["enclosed_volume"] = t.enclosed_volume;
+        jt["volume_rel_error"] = t.volume_rel_error;
+        jt["boundary_faces"] = t.boundary_faces;
+        jt["boundary_not_in_mesh"] = t.boundary_not_in_mesh;
+        jt["mesh_not_in_boundary"] = t.mesh_not_in_boundary;
+        jt["unmatched_mesh_vertices"] = t.unmatched_mesh_vertices;
+        jt["min_dihedral_deg"] = t.min_dihedral_deg;
+        jt["max_dihedral_deg"] = t.max_dihedral_deg;
+        jt["dihedral_histogram_10deg"] = t.dihedral_histogram;
     }
-    o << "}";
-    o << ",\n  \"notes\": [";
-    for (std::size_t i = 0; i < notes.size(); ++i) o << (i ? ", " : "") << str(notes[i]);
-    o << "],\n  \"seconds\": " << num(seconds) << "\n}\n";
-    return o.str();
+    o["notes"] = notes;
+    o["seconds"] = seconds;
+    return o.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 std::string VerifyReport::summary() const
@@ -143,7 +171,7 @@ std::string VerifyReport::summary() const
           << ", non-manifold vertices " << mesh.nonmanifold_vertices << ", misoriented edges " << mesh.misoriented_edges
           << ", degenerate " << mesh.degenerate_triangles << ", duplicates " << mesh.duplicate_triangles << "\n";
     o << "[" << verdict(mesh_ok()) << "] mesh is a closed oriented 2-manifold without self-intersections\n";
-    o << "[" << (topology_verdict == "undetermined" ? "UNDETERMINED" : verdict(topology_ok())) << "] homeomorphic to Sigma\n";
+    o << "[" << (topology_verdict == TopologyVerdict::Undetermined ? "UNDETERMINED" : verdict(topology_ok())) << "] homeomorphic to Sigma\n";
     if (hausdorff.checked) {
         const auto& h = hausdorff;
         o << "[" << verdict(h.passed) << "] Hausdorff <= eps = " << num(h.eps) << " (" << num(h.eps_voxels) << " voxel): M->Sigma max "

@@ -16,8 +16,8 @@ bool VerifyReport::mesh_ok() const
 
 bool VerifyReport::topology_ok() const
 {
-    if (topology_verdict == "pass") return true;
-    return topology_verdict == "undetermined" && !require_determined_topology;
+    if (topology_verdict == TopologyVerdict::Pass) return true;
+    return topology_verdict == TopologyVerdict::Undetermined && !require_determined_topology;
 }
 
 VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& mesh, const VerifyOptions& options)
@@ -31,7 +31,7 @@ VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& m
 
     VerifyReport rep;
     rep.effective_isovalue = field.samples().effective_isovalue();
-    rep.inside = inside == Inside::Above ? "above" : "below";
+    rep.inside = inside;
     rep.voxel = field.voxel();
     rep.require_determined_topology = options.require_determined_topology;
     if (rep.effective_isovalue != options.isovalue)
@@ -54,9 +54,9 @@ VerifyReport verify_surface(const openvdb::FloatGrid& grid, const SurfaceMesh& m
     for (const auto& c : rep.reference.components) gr.push_back(c.genus);
     std::sort(gm.begin(), gm.end());
     std::sort(gr.begin(), gr.end());
-    if (!rep.mesh.manifold) rep.topology_verdict = "fail";
-    else if (!rep.reference.determined) rep.topology_verdict = "undetermined";
-    else rep.topology_verdict = gm == gr ? "pass" : "fail";
+    if (!rep.mesh.manifold) rep.topology_verdict = TopologyVerdict::Fail;
+    else if (!rep.reference.determined) rep.topology_verdict = TopologyVerdict::Undetermined;
+    else rep.topology_verdict = gm == gr ? TopologyVerdict::Pass : TopologyVerdict::Fail;
 
     // 3. Hausdorff.
     const double eps = options.eps > 0 ? options.eps : options.eps_voxels * field.voxel();

@@ -110,160 +110,198 @@ void improve_blocks(TetMesh& mesh, const std::vector<std::vector<std::uint32_t>>
     mesh.tet_region = std::move(regions);
 }
 
-} // namespace
-
-TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, const TetImprovementParams& params)
+/// tet_improver::quality of \p x, a tet of \p mesh.
+double tet_quality(const TetMesh& mesh, const Tet& x)
 {
-    if (!(params.block_size > 0)) return tet_improver::Improver(mesh, surface_vertices, params.target_deg).run(params);
+    return tet_improver::quality(mesh.vertices[std::size_t(x[0])], mesh.vertices[std::size_t(x[1])],
+                                 mesh.vertices[std::size_t(x[2])], mesh.vertices[std::size_t(x[3])]);
+}
 
-    const double target = -std::cos(params.target_deg * tet_improver::kPi / 180.0);
-    const auto quality = [&](const Tet& x) {
-        return tet_improver::quality(mesh.vertices[std::size_t(x[0])], mesh.vertices[std::size_t(x[1])],
-                                     mesh.vertices[std::size_t(x[2])], mesh.vertices[std::size_t(x[3])]);
-    };
-    const auto find_bad = [&] {
-        std::vector<char> bad(mesh.tets.size());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
-            for (std::size_t t = r.begin(); t != r.end(); ++t) bad[t] = quality(mesh.tets[t]) < target;
-        });
-        return bad;
-    };
-    TetImprovementStats total;
-    const double worst = tbb::parallel_reduce(
+/// The smallest quality over the tets of \p mesh (kBest when it has none).
+double worst_quality(const TetMesh& mesh)
+{
+    return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), tet_improver::kBest,
         [&](const auto& r, double w) {
-            for (std::size_t t = r.begin(); t != r.end(); ++t) w = std::min(w, quality(mesh.tets[t]));
+            for (std::size_t t = r.begin(); t != r.end(); ++t) w = std::min(w, tet_quality(mesh, mesh.tets[t]));
             return w;
         },
         [](double a, double b) { return std::min(a, b); });
-    total.min_dihedral_before_deg = mesh.tets.empty() ? 0 : tet_improver::degrees(worst);
+}
 
-    std::vector<char> vertex_gone(mesh.vertices.size(), 0);
-    for (int sweep = 0; sweep < 2; ++sweep) {
-        // Each tet's block: the cube holding its centroid, the second sweep's grid shifted by
-        // half a side. Then the tets sorted by block (ties by index): each block a range.
-        const double shift = 0.5 * sweep * params.block_size;
-        struct Item {
-            std::array<std::int64_t, 3> block;
-            std::uint32_t tet;
-            bool operator<(const Item& o) const { return block < o.block || (block == o.block && tet < o.tet); }
-        };
-        std::vector<Item> items(mesh.tets.size());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
-            for (std::size_t t = r.begin(); t != r.end(); ++t) {
-                Item& it = items[t];
-                it.tet = std::uint32_t(t);
-                for (int k = 0; k < 3; ++k) {
-                    double c = 0;
-                    for (std::int32_t v : mesh.tets[t]) c += mesh.vertices[std::size_t(v)][k];
-                    it.block[k] = std::int64_t(std::floor((0.25 * c + shift) / params.block_size));
-                }
+/// Per tet: 1 when its quality is below \p target (the Improver's bad tets).
+std::vector<char> find_bad_tets(const TetMesh& mesh, double target)
+{
+    std::vector<char> bad(mesh.tets.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) bad[t] = tet_quality(mesh, mesh.tets[t]) < target;
+    });
+    return bad;
+}
+
+/// A tet and the block of one sweep's grid that holds it.
+struct BlockedTet {
+    std::array<std::int64_t, 3> block;
+    std::uint32_t tet;
+    bool operator<(const BlockedTet& o) const { return block < o.block || (block == o.block && tet < o.tet); }
+};
+
+/// The tets of \p mesh with their blocks in sweep \p sweep (0 or 1), sorted by block.
+std::vector<BlockedTet> tets_by_block(const TetMesh& mesh, double block_size, int sweep)
+{
+    // Each tet's block: the cube holding its centroid, the second sweep's grid shifted by
+    // half a side. Then the tets sorted by block (ties by index): each block a range.
+    const double shift = 0.5 * sweep * block_size;
+    std::vector<BlockedTet> items(mesh.tets.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            BlockedTet& it = items[t];
+            it.tet = std::uint32_t(t);
+            for (int k = 0; k < 3; ++k) {
+                double c = 0;
+                for (std::int32_t v : mesh.tets[t]) c += mesh.vertices[std::size_t(v)][k];
+                it.block[k] = std::int64_t(std::floor((0.25 * c + shift) / block_size));
             }
-        });
-        tbb::parallel_sort(items.begin(), items.end());
-        const std::vector<char> bad = find_bad();
-        std::vector<std::vector<std::uint32_t>> blocks;
-        for (std::size_t i = 0; i < items.size();) {
-            std::size_t j = i;
-            bool any_bad = false;
-            while (j < items.size() && items[j].block == items[i].block) any_bad |= bad[items[j++].tet] != 0;
-            if (any_bad) {
-                blocks.emplace_back();
-                for (std::size_t k = i; k < j; ++k) blocks.back().push_back(items[k].tet);
-            }
-            i = j;
         }
-        improve_blocks(mesh, blocks, surface_vertices, params, vertex_gone, total);
+    });
+    tbb::parallel_sort(items.begin(), items.end());
+    return items;
+}
+
+/// The blocks of \p items (sorted by block) that hold a bad tet, each as its tets in index order;
+/// blocks without one have nothing to improve.
+std::vector<std::vector<std::uint32_t>> blocks_with_bad_tets(const std::vector<BlockedTet>& items,
+                                                             const std::vector<char>& bad)
+{
+    std::vector<std::vector<std::uint32_t>> blocks;
+    for (std::size_t i = 0; i < items.size();) {
+        std::size_t j = i;
+        bool any_bad = false;
+        while (j < items.size() && items[j].block == items[i].block) any_bad |= bad[items[j++].tet] != 0;
+        if (any_bad) {
+            blocks.emplace_back();
+            for (std::size_t k = i; k < j; ++k) blocks.back().push_back(items[k].tet);
+        }
+        i = j;
     }
+    return blocks;
+}
 
-    // What the block boundaries held back: one last block, the tets within two vertex rings of
-    // those bad tets (every vertex of such a tet and of its neighbours then has its whole star
-    // in it), improved as its vertex-disjoint pieces.
-    {
-        std::vector<char> bad = find_bad();
-        // A bad tet that sat well inside its block in one of the sweeps (three of its longest
-        // edges from every face) had every move tried there: only the others seed the last
-        // block, which is serial work (or its pieces, below), so keeping it small matters, and
-        // a tet that already had every move tried in a sweep seldom gains from another try.
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
-            for (std::size_t t = r.begin(); t != r.end(); ++t) {
-                if (!bad[t]) continue;
-                const Tet& x = mesh.tets[t];
-                V3 c{0, 0, 0};
-                double longest = 0;
-                for (int i = 0; i < 4; ++i) {
-                    const V3& p = mesh.vertices[std::size_t(x[i])];
-                    for (int k = 0; k < 3; ++k) c[k] += 0.25 * p[k];
-                    for (int j = i + 1; j < 4; ++j)
-                        longest = std::max(longest, tet_improver::norm(tet_improver::sub(p, mesh.vertices[std::size_t(x[j])])));
-                }
-                const double margin = 3 * longest;
-                for (int sweep = 0; sweep < 2 && bad[t]; ++sweep) {
-                    bool inside = true;
-                    for (int k = 0; k < 3; ++k) {
-                        const double u = c[k] + 0.5 * sweep * params.block_size;
-                        const double off = u - std::floor(u / params.block_size) * params.block_size;
-                        inside &= off >= margin && params.block_size - off >= margin;
-                    }
-                    if (inside) bad[t] = 0;
-                }
+/// Clears \p bad for the bad tets that the sweeps already gave every move.
+void drop_tets_tried_in_a_sweep(const TetMesh& mesh, double block_size, std::vector<char>& bad)
+{
+    // A bad tet that sat well inside its block in one of the sweeps (three of its longest
+    // edges from every face) had every move tried there: only the others seed the last
+    // block, which is serial work (or its pieces, below), so keeping it small matters, and
+    // a tet that already had every move tried in a sweep seldom gains from another try.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), [&](const auto& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            if (!bad[t]) continue;
+            const Tet& x = mesh.tets[t];
+            V3 c{0, 0, 0};
+            double longest = 0;
+            for (int i = 0; i < 4; ++i) {
+                const V3& p = mesh.vertices[std::size_t(x[i])];
+                for (int k = 0; k < 3; ++k) c[k] += 0.25 * p[k];
+                for (int j = i + 1; j < 4; ++j)
+                    longest = std::max(longest, tet_improver::norm(tet_improver::sub(p, mesh.vertices[std::size_t(x[j])])));
             }
-        });
-        std::vector<char> near(mesh.vertices.size(), 0), in(mesh.tets.size(), 0);
-        for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-            if (bad[t])
-                for (std::int32_t v : mesh.tets[t]) near[std::size_t(v)] = 1;
-        for (int ring = 0; ring < 2; ++ring) {
-            for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-                for (std::int32_t v : mesh.tets[t]) in[t] |= near[std::size_t(v)];
-            for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-                if (in[t])
-                    for (std::int32_t v : mesh.tets[t]) near[std::size_t(v)] = 1;
+            const double margin = 3 * longest;
+            for (int sweep = 0; sweep < 2 && bad[t]; ++sweep) {
+                bool inside = true;
+                for (int k = 0; k < 3; ++k) {
+                    const double u = c[k] + 0.5 * sweep * block_size;
+                    const double off = u - std::floor(u / block_size) * block_size;
+                    inside &= off >= margin && block_size - off >= margin;
+                }
+                if (inside) bad[t] = 0;
+            }
         }
-        // The block falls apart into pieces that share no vertex (the bad tets lie in clusters
-        // along M): each piece is a block of its own, improved concurrently. Nothing a move reads
-        // or changes crosses between pieces (a face or an edge of two tets is a shared vertex,
-        // and a vertex moves or goes only with its whole star in the block), and the Improver
-        // visits the bad tets of each piece in the same relative order either way; once a piece
-        // stops changing, a further pass changes nothing in it (smoothing and insertion remember
-        // their failures, the other moves are functions of the unchanged tets). So the pieces
-        // end with the tets the single block gave; only the numbering of new vertices differs.
-        // (As one block it would be serial work, while the sweeps before it run in parallel.)
-        std::vector<std::uint32_t> root(mesh.vertices.size());
-        for (std::size_t v = 0; v < root.size(); ++v) root[v] = std::uint32_t(v);
-        const auto find = [&](std::uint32_t v) {
-            while (root[v] != v) v = root[v] = root[root[v]];
-            return v;
-        };
+    });
+}
+
+/// Per tet: 1 when it lies within two vertex rings of a tet marked in \p bad (every vertex of
+/// such a tet and of its neighbours then has its whole star among the marked tets).
+std::vector<char> two_ring_tets(const TetMesh& mesh, const std::vector<char>& bad)
+{
+    std::vector<char> near(mesh.vertices.size(), 0), in(mesh.tets.size(), 0);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (bad[t])
+            for (std::int32_t v : mesh.tets[t]) near[std::size_t(v)] = 1;
+    for (int ring = 0; ring < 2; ++ring) {
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+            for (std::int32_t v : mesh.tets[t]) in[t] |= near[std::size_t(v)];
         for (std::size_t t = 0; t < mesh.tets.size(); ++t)
             if (in[t])
-                for (int i = 1; i < 4; ++i) {
-                    const std::uint32_t a = find(std::uint32_t(mesh.tets[t][0])), b = find(std::uint32_t(mesh.tets[t][std::size_t(i)]));
-                    if (a != b) root[std::max(a, b)] = std::min(a, b);
-                }
-        // Pieces in the order of their first tet, each tet list in index order: the blocks and
-        // their merge order are functions of the mesh alone (determinism).
-        std::vector<std::int64_t> piece_of_root(mesh.vertices.size(), -1);
-        std::vector<std::vector<std::uint32_t>> last;
-        for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-            if (!in[t]) continue;
-            std::int64_t& piece = piece_of_root[find(std::uint32_t(mesh.tets[t][0]))];
-            if (piece < 0) {
-                piece = std::int64_t(last.size());
-                last.emplace_back();
-            }
-            last[std::size_t(piece)].push_back(std::uint32_t(t));
-        }
-        if (!params.split_last_block && last.size() > 1) {
-            for (std::size_t i = 1; i < last.size(); ++i) last[0].insert(last[0].end(), last[i].begin(), last[i].end());
-            std::sort(last[0].begin(), last[0].end());
-            last.resize(1);
-        }
-        total.last_block_pieces = last.size();
-        if (!last.empty()) improve_blocks(mesh, last, surface_vertices, params, vertex_gone, total);
+                for (std::int32_t v : mesh.tets[t]) near[std::size_t(v)] = 1;
     }
+    return in;
+}
 
-    // Removed vertices leave the numbering (M's keep theirs: none of them is ever removed).
+/// Union-find root of \p v (with path halving).
+std::uint32_t find_root(std::vector<std::uint32_t>& root, std::uint32_t v)
+{
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+}
+
+/// The tets marked in \p in, split into the pieces that share no vertex.
+std::vector<std::vector<std::uint32_t>> vertex_disjoint_pieces(const TetMesh& mesh, const std::vector<char>& in)
+{
+    std::vector<std::uint32_t> root(mesh.vertices.size());
+    for (std::size_t v = 0; v < root.size(); ++v) root[v] = std::uint32_t(v);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (in[t])
+            for (int i = 1; i < 4; ++i) {
+                const std::uint32_t a = find_root(root, std::uint32_t(mesh.tets[t][0])),
+                                    b = find_root(root, std::uint32_t(mesh.tets[t][std::size_t(i)]));
+                if (a != b) root[std::max(a, b)] = std::min(a, b);
+            }
+    // Pieces in the order of their first tet, each tet list in index order: the blocks and
+    // their merge order are functions of the mesh alone (determinism).
+    std::vector<std::int64_t> piece_of_root(mesh.vertices.size(), -1);
+    std::vector<std::vector<std::uint32_t>> pieces;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        if (!in[t]) continue;
+        std::int64_t& piece = piece_of_root[find_root(root, std::uint32_t(mesh.tets[t][0]))];
+        if (piece < 0) {
+            piece = std::int64_t(pieces.size());
+            pieces.emplace_back();
+        }
+        pieces[std::size_t(piece)].push_back(std::uint32_t(t));
+    }
+    return pieces;
+}
+
+/// The last block (see improve_tets), as the blocks to improve it as: its vertex-disjoint
+/// pieces, or one block when params.split_last_block is off.
+std::vector<std::vector<std::uint32_t>> last_block(const TetMesh& mesh, const TetImprovementParams& params,
+                                                   double target)
+{
+    std::vector<char> bad = find_bad_tets(mesh, target);
+    drop_tets_tried_in_a_sweep(mesh, params.block_size, bad);
+    const std::vector<char> in = two_ring_tets(mesh, bad);
+    // The block falls apart into pieces that share no vertex (the bad tets lie in clusters
+    // along M): each piece is a block of its own, improved concurrently. Nothing a move reads
+    // or changes crosses between pieces (a face or an edge of two tets is a shared vertex,
+    // and a vertex moves or goes only with its whole star in the block), and the Improver
+    // visits the bad tets of each piece in the same relative order either way; once a piece
+    // stops changing, a further pass changes nothing in it (smoothing and insertion remember
+    // their failures, the other moves are functions of the unchanged tets). So the pieces
+    // end with the tets the single block gave; only the numbering of new vertices differs.
+    // (As one block it would be serial work, while the sweeps before it run in parallel.)
+    std::vector<std::vector<std::uint32_t>> last = vertex_disjoint_pieces(mesh, in);
+    if (!params.split_last_block && last.size() > 1) {
+        for (std::size_t i = 1; i < last.size(); ++i) last[0].insert(last[0].end(), last[i].begin(), last[i].end());
+        std::sort(last[0].begin(), last[0].end());
+        last.resize(1);
+    }
+    return last;
+}
+
+/// Takes the vertices marked in \p vertex_gone out of the numbering, keeping the others' order.
+void drop_removed_vertices(TetMesh& mesh, const std::vector<char>& vertex_gone)
+{
     std::vector<std::int32_t> renumber(mesh.vertices.size(), -1);
     std::size_t n = 0;
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
@@ -274,6 +312,37 @@ TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, co
     mesh.vertices.resize(n);
     for (auto& x : mesh.tets)
         for (auto& v : x) v = renumber[std::size_t(v)];
+}
+
+} // namespace
+
+TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, const TetImprovementParams& params)
+{
+    if (!(params.block_size > 0)) return tet_improver::Improver(mesh, surface_vertices, params.target_deg).run(params);
+
+    const double target = -std::cos(params.target_deg * tet_improver::kPi / 180.0);
+    TetImprovementStats total;
+    const double worst = worst_quality(mesh);
+    total.min_dihedral_before_deg = mesh.tets.empty() ? 0 : tet_improver::degrees(worst);
+
+    // Two sweeps of blocks, each block improved on its own and concurrently: the second grid is
+    // shifted by half a side, so that few bad tets sit on a block boundary in both sweeps.
+    std::vector<char> vertex_gone(mesh.vertices.size(), 0);
+    for (int sweep = 0; sweep < 2; ++sweep) {
+        const std::vector<BlockedTet> items = tets_by_block(mesh, params.block_size, sweep);
+        const std::vector<char> bad = find_bad_tets(mesh, target);
+        improve_blocks(mesh, blocks_with_bad_tets(items, bad), surface_vertices, params, vertex_gone, total);
+    }
+
+    // What the block boundaries held back: one last block, the tets within two vertex rings of
+    // those bad tets (every vertex of such a tet and of its neighbours then has its whole star
+    // in it), improved as its vertex-disjoint pieces.
+    const std::vector<std::vector<std::uint32_t>> last = last_block(mesh, params, target);
+    total.last_block_pieces = last.size();
+    if (!last.empty()) improve_blocks(mesh, last, surface_vertices, params, vertex_gone, total);
+
+    // Removed vertices leave the numbering (M's keep theirs: none of them is ever removed).
+    drop_removed_vertices(mesh, vertex_gone);
     return total;
 }
 

@@ -2,12 +2,14 @@
 // then meshing"): an adaptive file is meshed on its leaves -- the stats report the leaf voxel
 // bound 3k+1 and fewer E and G points and tetrahedra than meshing its dense resampling -- and
 // `isodel verify` certifies surface and tetrahedra against the adaptive interpolant.
-#include "support/mini_json.h"
+#include "support/json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>
 
 using namespace isodel::test;
+using isodel::testing::Json;
+using isodel::testing::read_json_file;
 
 TEST_CASE("decimate then mesh: the adaptive file is meshed on its leaves and verifies", "[cli][adaptive]")
 {
@@ -29,19 +31,21 @@ TEST_CASE("decimate then mesh: the adaptive file is meshed on its leaves and ver
                                        tmp.path());
         INFO(m.err);
         REQUIRE(m.status == 0);
-        return parse_json(read_text(stats));
+        return read_json_file(stats);
     };
     const Json a = mesh(adaptive, "adaptive"), d = mesh(dense, "dense");
-    const Json& vb = a["voxel_bound"];
-    CHECK(vb["bound_E"].num == 7); // 3k + 1
-    CHECK(vb["max_cells_E"].num <= vb["bound_E"].num);
-    CHECK(vb["max_cells_N"].num <= vb["bound_N"].num);
-    CHECK(d["voxel_bound"]["bound_E"].num == 4);
-    INFO("E " << a["counts"]["E"].num << " vs " << d["counts"]["E"].num);
-    CHECK(a["counts"]["E"].num < 0.5 * d["counts"]["E"].num);
-    CHECK(a["counts"]["G"].num < 0.5 * d["counts"]["G"].num);
-    const double tets_a = a["tets"]["tets_inside"].num + a["tets"]["tets_outside"].num;
-    const double tets_d = d["tets"]["tets_inside"].num + d["tets"]["tets_outside"].num;
+    const Json& vb = a.at("voxel_bound");
+    CHECK(vb.at("bound_E").get<int>() == 7); // 3k + 1
+    CHECK(vb.at("max_cells_E").get<int>() <= vb.at("bound_E").get<int>());
+    CHECK(vb.at("max_cells_N").get<int>() <= vb.at("bound_N").get<int>());
+    CHECK(d.at("voxel_bound").at("bound_E").get<int>() == 4);
+    INFO("E " << a.at("counts").at("E").get<double>() << " vs " << d.at("counts").at("E").get<double>());
+    CHECK(a.at("counts").at("E").get<double>() < 0.5 * d.at("counts").at("E").get<double>());
+    CHECK(a.at("counts").at("G").get<double>() < 0.5 * d.at("counts").at("G").get<double>());
+    auto tets = [](const Json& s) {
+        return s.at("tets").at("tets_inside").get<double>() + s.at("tets").at("tets_outside").get<double>();
+    };
+    const double tets_a = tets(a), tets_d = tets(d);
     CHECK(tets_a < 0.5 * tets_d);
 
     const RunResult v = run_isodel("verify " + shell_quote(adaptive) + " --iso 0 --eps-voxels 0.5 --mesh " +

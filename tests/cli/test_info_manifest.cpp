@@ -6,7 +6,7 @@
 // the active box of a sparse .vdb (proteins, narrow bands, cells) can be smaller than the
 // manifest's lattice. For those the reported box must lie inside the manifest's and agree with
 // vdb_print exactly; for dense .vdb files (active box == manifest box) everything must be equal.
-#include "support/mini_json.h"
+#include "support/json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>
@@ -15,6 +15,9 @@
 #include <cmath>
 
 using namespace isodel::test;
+using isodel::testing::Json;
+using isodel::testing::json_has;
+using isodel::testing::read_json_file;
 
 namespace {
 
@@ -37,17 +40,17 @@ TEST_CASE("isodel info agrees with manifest.json and independent readers", "[cli
         return;
     }
     TempDir tmp;
-    const Json manifest = parse_json(read_text(kData + "/manifest.json"));
-    REQUIRE(manifest.kind == Json::Array);
+    const Json manifest = read_json_file(kData + "/manifest.json");
+    REQUIRE(manifest.is_array());
     REQUIRE(manifest.size() > 0);
     bool warned_independent = false;
     std::size_t checked = 0, sparse_vdb = 0;
-    for (const Json& e : manifest.arr) {
-        const std::string file = e["file"].str;
+    for (const Json& e : manifest) {
+        const std::string file = e.at("file").get<std::string>();
         const std::string path = kData + "/" + file;
         INFO("manifest entry " << file);
         const RunResult r = run_isodel("info --json " + shell_quote(path), tmp.path());
-        if (e.has("expect_error") && e["expect_error"].b) {
+        if (e.value("expect_error", false)) {
             CHECK(r.status == 2);
             CHECK(r.err.rfind("isodel: " + path + ": ", 0) == 0);
             CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
@@ -55,25 +58,27 @@ TEST_CASE("isodel info agrees with manifest.json and independent readers", "[cli
         }
         INFO("stderr: " << r.err);
         REQUIRE(r.status == 0);
-        const Json info = parse_json(r.out);
-        const std::string fmt = e["format"].str;
-        CHECK(info["format"].str == fmt);
-        if (e.has("grid_name")) CHECK(info["grid_name"].str == e["grid_name"].str);
-        if (e.has("grid_class")) CHECK(info["grid_class"].str == e["grid_class"].str);
+        const Json info = Json::parse(r.out);
+        const std::string fmt = e.at("format").get<std::string>();
+        CHECK(info.at("format").get<std::string>() == fmt);
+        if (json_has(e, "grid_name"))
+            CHECK(info.at("grid_name").get<std::string>() == e.at("grid_name").get<std::string>());
+        if (json_has(e, "grid_class"))
+            CHECK(info.at("grid_class").get<std::string>() == e.at("grid_class").get<std::string>());
 
         // Lattice.
         std::array<int, 3> mdims{}, idims{};
         for (int a = 0; a < 3; ++a) {
-            mdims[a] = int(e["dims"][a].num);
-            idims[a] = int(info["dims"][a].num);
+            mdims[a] = e.at("dims")[a].get<int>();
+            idims[a] = info.at("dims")[a].get<int>();
         }
         bool dense = true;
         if (fmt == "vdb") {
             for (int a = 0; a < 3; ++a) {
-                CHECK(info["index_bbox"][0][a].num >= e["index_bbox"][0][a].num);
-                CHECK(info["index_bbox"][1][a].num <= e["index_bbox"][1][a].num);
-                if (info["index_bbox"][0][a].num != e["index_bbox"][0][a].num ||
-                    info["index_bbox"][1][a].num != e["index_bbox"][1][a].num)
+                CHECK(info.at("index_bbox")[0][a].get<double>() >= e.at("index_bbox")[0][a].get<double>());
+                CHECK(info.at("index_bbox")[1][a].get<double>() <= e.at("index_bbox")[1][a].get<double>());
+                if (info.at("index_bbox")[0][a].get<double>() != e.at("index_bbox")[0][a].get<double>() ||
+                    info.at("index_bbox")[1][a].get<double>() != e.at("index_bbox")[1][a].get<double>())
                     dense = false;
             }
             sparse_vdb += !dense;
@@ -82,23 +87,24 @@ TEST_CASE("isodel info agrees with manifest.json and independent readers", "[cli
 
         // Voxel size and origin (world position of the manifest lattice's first sample).
         for (int a = 0; a < 3; ++a)
-            CHECK(close(info["voxel_size"][a].num, e["voxel_size"][a].num, 1e-6));
+            CHECK(close(info.at("voxel_size")[a].get<double>(), e.at("voxel_size")[a].get<double>(), 1e-6));
         std::array<double, 3> first{0, 0, 0};
-        if (e.has("index_bbox"))
-            for (int a = 0; a < 3; ++a) first[a] = e["index_bbox"][0][a].num;
-        const Json& M = info["index_to_world"];
+        if (json_has(e, "index_bbox"))
+            for (int a = 0; a < 3; ++a) first[a] = e.at("index_bbox")[0][a].get<double>();
+        const Json& M = info.at("index_to_world");
         for (int c = 0; c < 3; ++c) {
-            double w = M[3][c].num;
-            for (int r = 0; r < 3; ++r) w += first[r] * M[r][c].num;
-            CHECK(close(w, e["origin"][c].num, 1e-6, 1e-6));
+            double w = M[3][c].get<double>();
+            for (int r = 0; r < 3; ++r) w += first[r] * M[r][c].get<double>();
+            CHECK(close(w, e.at("origin")[c].get<double>(), 1e-6, 1e-6));
         }
-        if (e.has("index_to_world"))
+        if (json_has(e, "index_to_world"))
             for (int r = 0; r < 4; ++r)
-                for (int c = 0; c < 4; ++c) CHECK(close(M[r][c].num, e["index_to_world"][r][c].num, 1e-6, 1e-9));
+                for (int c = 0; c < 4; ++c)
+                    CHECK(close(M[r][c].get<double>(), e.at("index_to_world")[r][c].get<double>(), 1e-6, 1e-9));
 
         // Value range: equal for dense lattices; inside the manifest's range otherwise.
-        const double mlo = e["value_range"][0].num, mhi = e["value_range"][1].num;
-        const double ilo = info["value_range"][0].num, ihi = info["value_range"][1].num;
+        const double mlo = e.at("value_range")[0].get<double>(), mhi = e.at("value_range")[1].get<double>();
+        const double ilo = info.at("value_range")[0].get<double>(), ihi = info.at("value_range")[1].get<double>();
         const double tol = 1e-6 * std::max({std::abs(mlo), std::abs(mhi), 1e-30});
         if (dense) {
             CHECK(std::abs(ilo - mlo) <= tol);
@@ -117,23 +123,25 @@ TEST_CASE("isodel info agrees with manifest.json and independent readers", "[cli
         } else {
             INFO("independent reader: " << ind.out << ind.err);
             REQUIRE(ind.status == 0);
-            const Json ref = parse_json(ind.out);
-            for (int a = 0; a < 3; ++a) CHECK(idims[a] == int(ref["dims"][a].num));
+            const Json ref = Json::parse(ind.out);
+            for (int a = 0; a < 3; ++a) CHECK(idims[a] == ref.at("dims")[a].get<int>());
             if (fmt == "vdb") {
                 // vdb_print prints about 3 (voxel size) to 5 (values) significant digits.
-                CHECK(info["active_voxels"].num == ref["active_voxels"].num);
-                for (int a = 0; a < 3; ++a) CHECK(close(info["voxel_size"][a].num, ref["voxel_size_printed"][a].num, 1e-2));
+                CHECK(info.at("active_voxels").get<double>() == ref.at("active_voxels").get<double>());
+                for (int a = 0; a < 3; ++a)
+                    CHECK(close(info.at("voxel_size")[a].get<double>(), ref.at("voxel_size_printed")[a].get<double>(), 1e-2));
                 const double ptol = 1e-4 * std::max({std::abs(ihi), std::abs(ilo), 1e-30});
-                CHECK(ilo <= ref["active_range"][0].num + ptol);
-                CHECK(ihi >= ref["active_range"][1].num - ptol);
-                if (info["active_voxels"].num == double(idims[0]) * idims[1] * idims[2]) {
-                    CHECK(std::abs(ilo - ref["active_range"][0].num) <= ptol);
-                    CHECK(std::abs(ihi - ref["active_range"][1].num) <= ptol);
+                CHECK(ilo <= ref.at("active_range")[0].get<double>() + ptol);
+                CHECK(ihi >= ref.at("active_range")[1].get<double>() - ptol);
+                if (info.at("active_voxels").get<double>() == double(idims[0]) * idims[1] * idims[2]) {
+                    CHECK(std::abs(ilo - ref.at("active_range")[0].get<double>()) <= ptol);
+                    CHECK(std::abs(ihi - ref.at("active_range")[1].get<double>()) <= ptol);
                 }
             } else {
-                for (int a = 0; a < 3; ++a) CHECK(close(info["voxel_size"][a].num, ref["voxel_size"][a].num, 1e-6));
-                CHECK(close(ilo, ref["value_range"][0].num, 1e-6, tol));
-                CHECK(close(ihi, ref["value_range"][1].num, 1e-6, tol));
+                for (int a = 0; a < 3; ++a)
+                    CHECK(close(info.at("voxel_size")[a].get<double>(), ref.at("voxel_size")[a].get<double>(), 1e-6));
+                CHECK(close(ilo, ref.at("value_range")[0].get<double>(), 1e-6, tol));
+                CHECK(close(ihi, ref.at("value_range")[1].get<double>(), 1e-6, tol));
             }
         }
         ++checked;

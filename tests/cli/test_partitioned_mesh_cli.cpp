@@ -2,7 +2,7 @@
 // contribute the refinement, the stats say so, and the merged mesh verifies like the
 // unpartitioned one; with tetrahedra too. Adaptive inputs are refused with a one-line error and
 // no output file.
-#include "support/mini_json.h"
+#include "support/json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>
@@ -10,6 +10,8 @@
 #include <filesystem>
 
 using namespace isodel::test;
+using isodel::testing::Json;
+using isodel::testing::read_json_file;
 
 TEST_CASE("mesh --blocks: partitioned and unpartitioned meshes both verify", "[cli][partition]")
 {
@@ -25,13 +27,13 @@ TEST_CASE("mesh --blocks: partitioned and unpartitioned meshes both verify", "[c
                                        tmp.path());
         INFO(m.err);
         REQUIRE(m.status == 0);
-        const Json s = parse_json(read_text(stats));
+        const Json s = read_json_file(stats);
         if (std::string(blocks) != "0") {
-            const Json& p = s["partition"];
-            CHECK(p["blocks"].num > 1);
-            CHECK(p["blocks_failed"].num == 0);
-            CHECK(p["block_points"].num > p["seam_points"].num);
-            CHECK(s["seconds"]["blocks"].num > 0);
+            const Json& p = s.at("partition");
+            CHECK(p.at("blocks").get<int>() > 1);
+            CHECK(p.at("blocks_failed").get<int>() == 0);
+            CHECK(p.at("block_points").get<long>() > p.at("seam_points").get<long>());
+            CHECK(s.at("seconds").at("blocks").get<double>() > 0);
         }
         const RunResult v = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.25 --mesh " +
                                            shell_quote(out) + " --tets " + shell_quote(tets),

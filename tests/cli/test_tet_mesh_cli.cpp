@@ -2,12 +2,14 @@
 // have -- meshio, VTK's XML reader, the Gmsh CLI -- and each agrees with the run's statistics on
 // vertex, triangle and per-region tetrahedron counts (tests/cli/tet_mesh_readers.py); a bad
 // extension is refused before any meshing.
-#include "support/mini_json.h"
+#include "support/json.h"
 #include "io/test_files.h"
 
 #include <catch2/catch.hpp>
 
 using namespace isodel::test;
+using isodel::testing::Json;
+using isodel::testing::read_json_file;
 
 namespace {
 
@@ -29,25 +31,25 @@ TEST_CASE("mesh --tets: real readers load .mesh, .vtu and .msh with the same cou
                                            tmp.path());
             INFO("stderr: " << r.err);
             REQUIRE(r.status == 0);
-            const Json s = parse_json(read_text(stats));
-            const Json& t = s["tets"];
-            const long nv = long(t["vertices"].num), nin = long(t["tets_inside"].num),
-                       nout = long(t["tets_outside"].num), ntri = long(s["counts"]["triangles"].num);
+            const Json s = read_json_file(stats);
+            const Json& t = s.at("tets");
+            const long nv = t.at("vertices").get<long>(), nin = t.at("tets_inside").get<long>(),
+                       nout = t.at("tets_outside").get<long>(), ntri = s.at("counts").at("triangles").get<long>();
             CHECK(nin > 0);
             CHECK((region == "both") == (nout > 0));
-            CHECK(t["volume_inside"].num ==
-                  Approx(t["volume_enclosed_by_surface"].num).epsilon(1e-9));
+            CHECK(t.at("volume_inside").get<double>() ==
+                  Approx(t.at("volume_enclosed_by_surface").get<double>()).epsilon(1e-9));
             // Where the tets phase's time went: every step, adding up to at most the phase.
             double steps = 0;
             for (const char* step : {"insert_g_prime", "conformity_checks", "crowding_points", "region_labels",
                                      "numbering", "improvement", "quality"}) {
                 INFO(step);
-                CHECK(t["seconds"][step].num >= 0);
-                CHECK(t["seconds"].has(step));
-                steps += t["seconds"][step].num;
+                REQUIRE(t.at("seconds").contains(step));
+                CHECK(t.at("seconds").at(step).get<double>() >= 0);
+                steps += t.at("seconds").at(step).get<double>();
             }
-            CHECK(steps <= s["seconds"]["tets"].num + 1e-6);
-            CHECK(t["seconds"]["improvement"].num >= t["improvement_seconds"].num);
+            CHECK(steps <= s.at("seconds").at("tets").get<double>() + 1e-6);
+            CHECK(t.at("seconds").at("improvement").get<double>() >= t.at("improvement_seconds").get<double>());
             const RunResult py = run("/usr/bin/python3 " + shell_quote(readers_script()) + " " + shell_quote(tets) +
                                          " " + std::to_string(nv) + " " + std::to_string(ntri) + " " +
                                          std::to_string(nin) + " " + std::to_string(nout),

@@ -47,7 +47,7 @@ TEST_CASE("a needle void up a grid edge stays one component", "[mesher][facet-lo
             const auto r = testing::mesh_and_verify(*grid, 0.0, Inside::Above, eps);
             INFO(r.report.summary());
             CHECK(r.report.reference.determined);
-            CHECK(r.report.topology_verdict == "pass");
+            CHECK(r.report.topology_verdict == TopologyVerdict::Pass);
             CHECK(r.report.passed());
         }
     }

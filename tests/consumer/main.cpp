@@ -1,8 +1,6 @@
 // Downstream use of the installed package: read a volume and mesh a level set through the
-// public API only. Exit 0 when the mesh is non-empty.
-#include <isodel/errors.h>
-#include <isodel/mesh.h>
-#include <isodel/volume.h>
+// public API only, through the umbrella header. Exit 0 when the mesh is non-empty.
+#include <isodel/isodel.h>
 
 #include <cstdlib>
 #include <iostream>

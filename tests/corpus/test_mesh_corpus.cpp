@@ -18,27 +18,28 @@ namespace {
 void mesh_corpus(const std::vector<std::string>& files)
 {
     const auto manifest = testing::read_manifest();
-    if (manifest.type != minijson::Value::Array) {
+    if (!manifest.is_array()) {
         WARN("../shared/data not found at " << testing::shared_data() << ": test skipped");
         SUCCEED();
         return;
     }
     for (const std::string& file : files) {
-        const minijson::Value* entry = testing::manifest_entry(manifest, file);
+        const testing::Json* entry = testing::manifest_entry(manifest, file);
         REQUIRE(entry != nullptr);
         const auto& e = *entry;
         ReadOptions ro;
-        if (e["format"].as_string() == "vdb") ro.grid_name = e["grid_name"].as_string();
+        if (testing::json_string(e, "format") == "vdb") ro.grid_name = testing::json_string(e, "grid_name");
         const auto grid = read_volume(testing::shared_data() + "/" + file, ro).grid;
         testing::MeshAndVerify r;
         try {
-            r = testing::mesh_and_verify(*grid, e["isovalue"].as_number(), testing::inside_of(e), 0.5);
+            r = testing::mesh_and_verify(*grid, testing::json_number(e, "isovalue"), testing::inside_of(e), 0.5);
         } catch (const std::exception& ex) {
             FAIL_CHECK(file << ": " << ex.what());
             continue;
         }
         INFO(file << "\n" << r.report.summary());
-        if (e.has("expected_topology") && e["expected_topology"].has("genus")) CHECK(r.genera == testing::expected_genera(e));
+        if (testing::json_has(e, "expected_topology") && testing::json_has(e.at("expected_topology"), "genus"))
+            CHECK(r.genera == testing::expected_genera(e));
         CHECK(r.report.passed());
         // Theorem 2's bounds (4 cells for E and 27 for N points with a one-voxel layer; E's needs an
         // orthogonal lattice: on a sheared map, EMD-3001 with 8 cells measured for E, the E bound

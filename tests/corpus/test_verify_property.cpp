@@ -57,7 +57,7 @@ void run_property(bool snap)
         vo.inside = Inside::Above;
         vo.eps_voxels = 0.5;
         const VerifyReport r = verify_surface(*grid, res.surface, vo);
-        if (r.topology_verdict == "undetermined") ++undetermined;
+        if (r.topology_verdict == TopologyVerdict::Undetermined) ++undetermined;
         if (r.passed()) {
             ++passed;
         } else {
@@ -68,7 +68,7 @@ void run_property(bool snap)
                 grid->setName("density");
                 write_vdb(std::string(dir) + "/random_" + std::to_string(s) + ".vdb", {grid});
             }
-            failures << "seed " << s << " n " << n << (quantized ? " quantized" : "") << ": topology " << r.topology_verdict
+            failures << "seed " << s << " n " << n << (quantized ? " quantized" : "") << ": topology " << to_string(r.topology_verdict)
                      << ", mesh " << (r.mesh_ok() ? "ok" : "FAIL") << ", hausdorff " << (r.hausdorff_ok() ? "ok" : "FAIL")
                      << ", delaunay " << (r.delaunay_ok() ? "ok" : "FAIL") << "\n";
         }

@@ -17,7 +17,7 @@ using namespace isodel;
 TEST_CASE("shared volumes: tetrahedral meshes conform to M", "[corpus][volume_mesh]")
 {
     const auto manifest = testing::read_manifest();
-    if (manifest.type != minijson::Value::Array) {
+    if (!manifest.is_array()) {
         WARN("../shared/data not found at " << testing::shared_data() << ": test skipped, nothing was checked");
         SUCCEED();
         return;
@@ -44,13 +44,13 @@ TEST_CASE("shared volumes: tetrahedral meshes conform to M", "[corpus][volume_me
     std::printf("%-34s %9s %9s %9s %10s %10s %10s %9s %7s %7s %8s\n", "volume", "triangles", "tets_in", "tets_out",
                 "vol_relerr", "min_dih", "max_dih", "max_r/e", "off_dih", "off_r/e", "tets_s");
     for (const auto& [file, region] : cases) {
-        const minijson::Value* entry = nullptr;
-        for (const auto& e : manifest.arr)
-            if (e["file"].as_string() == file) entry = &e;
+        const testing::Json* entry = nullptr;
+        for (const auto& e : manifest)
+            if (testing::json_string(e, "file") == file) entry = &e;
         REQUIRE(entry != nullptr);
-        auto grid = testing::read_vdb(testing::shared_data() + "/" + file, (*entry)["grid_name"].as_string());
+        auto grid = testing::read_vdb(testing::shared_data() + "/" + file, testing::json_string(*entry, "grid_name"));
         MeshOptions mo;
-        mo.isovalue = (*entry)["isovalue"].as_number();
+        mo.isovalue = testing::json_number(*entry, "isovalue");
         mo.inside = testing::inside_of(*entry);
         mo.eps_voxels = 0.5;
         mo.tets = region;

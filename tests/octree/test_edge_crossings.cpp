@@ -134,6 +134,20 @@ TEST_CASE("edge crossings: fog volumes with active and inactive tiles", "[octree
     }
 }
 
+TEST_CASE("edge crossings: tiles on the background's side next to inside voxels", "[octree][sparse]")
+{
+    // A 32^3 tile at 0.2 (outside, like the background 0) wrapped in voxels at 0.9 (inside):
+    // Sigma runs between the tile and the voxels, found from the voxels' leaves alone.
+    auto grid = openvdb::FloatGrid::create(0.f);
+    grid->tree().fill(CoordBBox(Coord(0), Coord(31)), 0.2f, true);
+    auto acc = grid->getAccessor();
+    for (int z = -2; z <= 33; ++z)
+        for (int y = -2; y <= 33; ++y)
+            for (int x = -2; x <= 33; ++x)
+                if (!CoordBBox(Coord(0), Coord(31)).isInside(Coord(x, y, z))) acc.setValueOn(Coord(x, y, z), 0.9f);
+    require_same_as_whole_box(grid, 0.5, Inside::Above);
+}
+
 TEST_CASE("edge crossings: a background that is inside crosses the whole domain boundary", "[octree][sparse]")
 {
     auto grid = openvdb::FloatGrid::create(1.f);

@@ -79,7 +79,7 @@ TEST_CASE("tunnel shoulders: random volumes keep the handles at in-cell necks", 
         const auto grid = testing::random_volume(n, seed, seed % 5 == 0);
         const auto r = testing::mesh_and_verify(*grid, 0.0, Inside::Above, 0.5);
         INFO("seed " << seed << "\n" << r.report.summary());
-        CHECK(r.report.topology_verdict == "pass");
+        CHECK(r.report.topology_verdict == TopologyVerdict::Pass);
         CHECK(r.report.passed());
     }
 }

@@ -49,25 +49,25 @@ inline MeshAndVerify mesh_and_verify(const openvdb::FloatGrid& grid, double iso,
     return mesh_and_verify(grid, mo);
 }
 
-inline std::vector<int> expected_genera(const minijson::Value& entry)
+inline std::vector<int> expected_genera(const Json& entry)
 {
     std::vector<int> g;
-    for (const auto& v : entry["expected_topology"]["genus"].arr) g.push_back(int(v.num));
+    for (const auto& v : entry.at("expected_topology").at("genus")) g.push_back(v.get<int>());
     std::sort(g.begin(), g.end());
     return g;
 }
 
 /// The manifest entry of \p file, or null.
-inline const minijson::Value* manifest_entry(const minijson::Value& manifest, const std::string& file)
+inline const Json* manifest_entry(const Json& manifest, const std::string& file)
 {
-    for (const auto& e : manifest.arr)
-        if (e["file"].as_string() == file) return &e;
+    for (const auto& e : manifest)
+        if (json_string(e, "file") == file) return &e;
     return nullptr;
 }
 
-inline Inside inside_of(const minijson::Value& entry)
+inline Inside inside_of(const Json& entry)
 {
-    return entry["inside"].as_string() == "below" ? Inside::Below : Inside::Above;
+    return json_string(entry, "inside") == "below" ? Inside::Below : Inside::Above;
 }
 
 /// Whether \p path (a file of ../shared/data) exists; if not, the test says so and counts as

@@ -4,7 +4,7 @@
 // their convex hull, whose facets are Delaunay facets of the point set), manifest reading.
 #include <isodel/surface_mesh.h>
 
-#include "verify/mini_json.h"
+#include "support/json.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -92,14 +92,12 @@ inline SurfaceMesh star_hull_mesh(const openvdb::FloatGrid& grid, const openvdb:
 
 inline std::string shared_data() { return ISODEL_SHARED_DATA; }
 
-/// The manifest, or a null value if ../shared/data is absent.
-inline minijson::Value read_manifest()
+/// The manifest (an array), or a null value if ../shared/data is absent.
+inline Json read_manifest()
 {
-    std::ifstream in(shared_data() + "/manifest.json");
-    if (!in) return {};
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return minijson::parse(ss.str());
+    const std::string path = shared_data() + "/manifest.json";
+    if (!std::ifstream(path)) return {};
+    return read_json_file(path);
 }
 
 inline openvdb::FloatGrid::Ptr read_vdb(const std::string& path, const std::string& name)

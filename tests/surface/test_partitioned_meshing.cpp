@@ -101,7 +101,7 @@ TEST_CASE("partitioned meshes verify: topology, eps and Delaunay conformity", "[
         const VerifyReport rep = verify(*torus, r.surface, 0.25);
         INFO(rep.summary());
         CHECK(rep.passed());
-        CHECK(rep.topology_verdict == "pass");
+        CHECK(rep.topology_verdict == TopologyVerdict::Pass);
         CHECK(r.stats.components.size() == 1);
         CHECK(r.stats.partition.blocks == int(std::pow((32 + 1 + block - 1) / block, 3)));
         // The blocks did the refinement; the merge only fixes seams.
@@ -117,7 +117,7 @@ TEST_CASE("partitioned meshes verify: topology, eps and Delaunay conformity", "[
             const VerifyReport rep = verify(*grid, r.surface, 0.25);
             INFO(rep.summary());
             CHECK(rep.passed());
-            CHECK(rep.topology_verdict == "pass");
+            CHECK(rep.topology_verdict == TopologyVerdict::Pass);
             CHECK(r.stats.partition.blocks_failed == 0);
         }
     }

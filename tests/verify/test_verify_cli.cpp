@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -43,14 +42,11 @@ TEST_CASE("isodel verify: exit codes and JSON report", "[verify][cli]")
         for (const auto& t : m.triangles) o << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
     }
     CHECK(run("verify " + vdb + " --iso 0 --mesh " + off + " --eps-voxels 0.25 --json " + json) == 0);
-    std::ifstream in(json);
-    REQUIRE(in);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const auto report = minijson::parse(ss.str());
-    CHECK(report["passed"].b);
-    CHECK(report["topology"]["verdict"].as_string() == "pass");
-    CHECK(report["hausdorff"]["mesh_to_surface"]["max_voxels"].as_number() < 0.25);
+    REQUIRE(fs::exists(json));
+    const testing::Json report = testing::read_json_file(json);
+    CHECK(report.at("passed").get<bool>());
+    CHECK(report.at("topology").at("verdict").get<std::string>() == "pass");
+    CHECK(report.at("hausdorff").at("mesh_to_surface").at("max_voxels").get<double>() < 0.25);
     CHECK(run("verify " + vdb + " --iso 0 --mesh " + off + " --eps-voxels 0.005") == 1);
     CHECK(run("verify " + vdb + " --iso 0 --mesh " + (dir / "missing.off").string()) == 2);
     fs::remove_all(dir);

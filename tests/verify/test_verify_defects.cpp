@@ -64,15 +64,17 @@ TEST_CASE("verify: a correct sphere mesh passes every check", "[verify]")
     CHECK(r.mesh.oriented);
     CHECK(r.mesh.outward);
     CHECK(r.mesh.self_intersecting_pairs == 0);
-    CHECK(r.topology_verdict == "pass");
+    CHECK(r.topology_verdict == TopologyVerdict::Pass);
     CHECK(r.hausdorff.passed);
     CHECK(r.hausdorff.mesh_to_surface.max_voxels < 0.1);
     CHECK(r.hausdorff.surface_to_mesh.max_voxels < 0.1);
     CHECK(r.delaunay.passed);
     CHECK(r.delaunay.dt_facets == s.mesh.triangles.size());
     CHECK(r.passed());
-    // The JSON report carries the verdict.
-    CHECK(r.to_json().find("\"passed\": true") != std::string::npos);
+    // The JSON report carries the verdicts.
+    const testing::Json json = testing::Json::parse(r.to_json());
+    CHECK(json.at("passed").get<bool>());
+    CHECK(json.at("topology").at("verdict").get<std::string>() == "pass");
 }
 
 TEST_CASE("verify: inward normals are caught", "[verify]")
@@ -92,7 +94,7 @@ TEST_CASE("verify: a mesh shifted by more than eps fails Hausdorff", "[verify]")
     for (auto& v : s.mesh.vertices) v[0] += shift;
     const VerifyReport r = verify_surface(*s.grid, s.mesh, s.opt);
     INFO(r.summary());
-    CHECK(r.topology_verdict == "pass");
+    CHECK(r.topology_verdict == TopologyVerdict::Pass);
     CHECK_FALSE(r.hausdorff.passed);
     CHECK(r.hausdorff.mesh_to_surface.max_voxels > 0.3);
     CHECK(r.hausdorff.surface_to_mesh.max_voxels > 0.3);
@@ -106,7 +108,7 @@ TEST_CASE("verify: a hole is caught", "[verify]")
     const VerifyReport r = verify_surface(*s.grid, s.mesh, s.opt);
     CHECK_FALSE(r.mesh.closed);
     CHECK(r.mesh.boundary_edges == 3);
-    CHECK(r.topology_verdict == "fail");
+    CHECK(r.topology_verdict == TopologyVerdict::Fail);
     CHECK_FALSE(r.passed());
 }
 
@@ -206,6 +208,6 @@ TEST_CASE("verify: a mesh of the wrong genus is caught", "[verify]")
     CHECK(r.mesh.oriented);
     REQUIRE(r.mesh.components.size() == 1);
     CHECK(r.mesh.components[0].genus == 1);
-    CHECK(r.topology_verdict == "fail");
+    CHECK(r.topology_verdict == TopologyVerdict::Fail);
     CHECK_FALSE(r.passed());
 }

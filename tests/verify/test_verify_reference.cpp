@@ -68,22 +68,22 @@ TEST_CASE("reference topology: analytic volumes in memory", "[verify][reference]
 TEST_CASE("reference topology: single-cell cases and random volumes of ../shared/data", "[verify][reference]")
 {
     const auto manifest = testing::read_manifest();
-    if (manifest.type != minijson::Value::Array) {
+    if (!manifest.is_array()) {
         WARN("../shared/data not found at " << testing::shared_data() << ": test skipped");
         SUCCEED();
         return;
     }
     int checked = 0, undetermined = 0;
-    for (const auto& e : manifest.arr) {
-        const std::string file = e["file"].as_string();
-        const std::string cat = e["category"].as_string();
-        if (e["format"].as_string() != "vdb" || (cat != "mc-ambiguity-cell" && cat != "random")) continue;
-        if (!e.has("expected_topology")) continue;
-        auto grid = testing::read_vdb(testing::shared_data() + "/" + file, e["grid_name"].as_string());
-        const Inside inside = e["inside"].as_string() == "below" ? Inside::Below : Inside::Above;
-        const auto r = reference_topology(*grid, e["isovalue"].as_number(), inside, 4, 32);
+    for (const auto& e : manifest) {
+        const std::string file = testing::json_string(e, "file");
+        const std::string cat = testing::json_string(e, "category");
+        if (testing::json_string(e, "format") != "vdb" || (cat != "mc-ambiguity-cell" && cat != "random")) continue;
+        if (!testing::json_has(e, "expected_topology")) continue;
+        auto grid = testing::read_vdb(testing::shared_data() + "/" + file, testing::json_string(e, "grid_name"));
+        const Inside inside = testing::json_string(e, "inside") == "below" ? Inside::Below : Inside::Above;
+        const auto r = reference_topology(*grid, testing::json_number(e, "isovalue"), inside, 4, 32);
         std::vector<int> expected;
-        for (const auto& v : e["expected_topology"]["genus"].arr) expected.push_back(int(v.num));
+        for (const auto& v : e.at("expected_topology").at("genus")) expected.push_back(v.get<int>());
         std::sort(expected.begin(), expected.end());
         INFO(file << " refinements " << r.refinements.size() << " last R " << r.refinements.back());
         if (!r.determined) ++undetermined;

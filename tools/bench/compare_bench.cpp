@@ -31,7 +31,6 @@
 #include <isodel/mesh.h>
 #include <isodel/volume.h>
 
-#include "../../src/verify/mini_json.h"
 #include "octree/sample_field.h"
 #include "octree/segment_walk.h"
 #include "surface/final_points.h"
@@ -478,23 +477,24 @@ int main(int argc, char** argv)
     }
     std::stringstream ss;
     ss << in.rdbuf();
-    const auto manifest = isodel::minijson::parse(ss.str());
+    const nlohmann::json manifest = nlohmann::json::parse(ss.str());
     std::vector<Dataset> sets;
-    for (const auto& e : manifest.arr) {
-        if (e.has("expect_error") && e["expect_error"].type == isodel::minijson::Value::Bool && e["expect_error"].b) continue;
-        if (e["format"].as_string() != "vdb") continue;
-        const std::string file = e["file"].as_string();
+    using isodel::bench::json_string;
+    for (const auto& e : manifest) {
+        if (isodel::bench::expects_error(e)) continue;
+        if (json_string(e, "format") != "vdb") continue;
+        const std::string file = json_string(e, "file");
         if (all) {
-            if (e["category"].as_string() == "invalid" || file.rfind("cells/", 0) == 0) continue;
+            if (json_string(e, "category") == "invalid" || file.rfind("cells/", 0) == 0) continue;
         } else if (std::none_of(filters.begin(), filters.end(),
                                 [&](const std::string& s) { return file.find(s) != std::string::npos; }))
             continue;
         Dataset d;
         d.file = file;
-        d.grid_name = e["grid_name"].as_string();
-        d.isovalue = e["isovalue"].as_number();
-        d.inside = e["inside"].as_string() == "below" ? isodel::Inside::Below : isodel::Inside::Above;
-        for (std::size_t k = 0; k < e["dims"].size(); ++k) d.dims += (k ? "x" : "") + std::to_string(int(e["dims"][k].num));
+        d.grid_name = json_string(e, "grid_name");
+        d.isovalue = isodel::bench::json_number(e, "isovalue");
+        d.inside = json_string(e, "inside") == "below" ? isodel::Inside::Below : isodel::Inside::Above;
+        d.dims = isodel::bench::dims_string(e);
         sets.push_back(d);
     }
     if (sets.empty()) {

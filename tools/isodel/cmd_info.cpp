@@ -2,33 +2,14 @@
 // voxel size, value range), as text or as one JSON object (--json) for scripts and tests.
 #include "cli_common.h"
 
-#include <cstdio>
+#include <nlohmann/json.hpp>
+
 #include <iostream>
 #include <sstream>
 
 namespace isodel::cli {
 namespace {
 
-std::string json_string(const std::string& s)
-{
-    std::string out = "\"";
-    for (unsigned char c : s) {
-        if (c == '"' || c == '\\') { out += '\\'; out += char(c); }
-        else if (c < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); out += b; }
-        else out += char(c);
-    }
-    return out + "\"";
-}
-
-// 17 significant digits: a double prints and parses back to the same value.
-std::string num(double v)
-{
-    char b[32];
-    std::snprintf(b, sizeof b, "%.17g", v);
-    return b;
-}
-
-std::string vec(const openvdb::Vec3d& v) { return "[" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + "]"; }
 std::string ivec(const openvdb::Coord& c)
 {
     return "[" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "]";
@@ -66,29 +47,33 @@ Info gather(const Volume& vol)
     return info;
 }
 
+// Integers as integers; doubles written so they read back to the same value.
 void print_json(const Volume& vol, const Info& i)
 {
-    std::ostringstream o;
-    o << "{\n"
-      << "  \"file\": " << json_string(vol.path) << ",\n"
-      << "  \"format\": " << json_string(vol.format) << ",\n"
-      << "  \"grid_name\": " << json_string(vol.grid->getName()) << ",\n"
-      << "  \"grid_class\": " << json_string(i.grid_class) << ",\n"
-      << "  \"default_inside\": " << json_string(to_string(vol.default_inside)) << ",\n"
-      << "  \"dims\": " << ivec(i.dims) << ",\n"
-      << "  \"index_bbox\": [" << ivec(vol.lattice.min()) << ", " << ivec(vol.lattice.max()) << "],\n"
-      << "  \"world_bbox\": [" << vec(i.world_min) << ", " << vec(i.world_max) << "],\n"
-      << "  \"voxel_size\": " << vec(i.voxel) << ",\n"
-      << "  \"value_range\": [" << num(vol.value_min) << ", " << num(vol.value_max) << "],\n"
-      << "  \"background\": " << num(vol.grid->background()) << ",\n"
-      << "  \"active_voxels\": " << i.active << ",\n"
-      << "  \"memory_bytes\": " << i.memory << ",\n"
-      << "  \"index_to_world\": [";
+    using Json = nlohmann::ordered_json;
+    auto vec = [](const openvdb::Vec3d& v) { return Json::array({v[0], v[1], v[2]}); };
+    auto ijk = [](const openvdb::Coord& c) { return Json::array({c.x(), c.y(), c.z()}); };
+    Json o;
+    o["file"] = vol.path;
+    o["format"] = vol.format;
+    o["grid_name"] = vol.grid->getName();
+    o["grid_class"] = i.grid_class;
+    o["default_inside"] = to_string(vol.default_inside);
+    o["dims"] = ijk(i.dims);
+    o["index_bbox"] = Json::array({ijk(vol.lattice.min()), ijk(vol.lattice.max())});
+    o["world_bbox"] = Json::array({vec(i.world_min), vec(i.world_max)});
+    o["voxel_size"] = vec(i.voxel);
+    o["value_range"] = Json::array({double(vol.value_min), double(vol.value_max)});
+    o["background"] = double(vol.grid->background());
+    o["active_voxels"] = i.active;
+    o["memory_bytes"] = i.memory;
+    Json m = Json::array();
     for (int r = 0; r < 4; ++r)
-        o << (r ? ", " : "") << "[" << num(i.index_to_world(r, 0)) << ", " << num(i.index_to_world(r, 1)) << ", "
-          << num(i.index_to_world(r, 2)) << ", " << num(i.index_to_world(r, 3)) << "]";
-    o << "]\n}\n";
-    std::cout << o.str();
+        m.push_back(Json::array({i.index_to_world(r, 0), i.index_to_world(r, 1), i.index_to_world(r, 2),
+                                 i.index_to_world(r, 3)}));
+    o["index_to_world"] = std::move(m);
+    // A path need not be UTF-8: invalid bytes are written as U+FFFD rather than failing.
+    std::cout << o.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
 }
 
 void print_text(const Volume& vol, const Info& i)

@@ -12,7 +12,6 @@
 #include <isodel/verify.h>
 #include <isodel/volume.h>
 
-#include "../../src/verify/mini_json.h"
 #include "support/bench_support.h"
 
 #include <openvdb/openvdb.h>
@@ -28,6 +27,8 @@
 
 namespace {
 
+using isodel::bench::json_number;
+using isodel::bench::json_string;
 using isodel::bench::split;
 
 // The shared data sit next to the repository: <repo>/../shared/data.
@@ -79,24 +80,23 @@ int main(int argc, char** argv)
     }
     std::stringstream ss;
     ss << in.rdbuf();
-    const auto manifest = isodel::minijson::parse(ss.str());
+    const nlohmann::json manifest = nlohmann::json::parse(ss.str());
 
     std::printf("%-42s %-12s %5s %8s %9s %8s %8s %-9s %-9s %-9s %-4s %s\n", "dataset", "dims", "eps", "vertices",
                 "triangles", "time_s", "verify_s", "topology", "hausdorff", "delaunay", "M", "notes");
     int rows = 0, failed = 0;
     double mesh_total = 0, verify_total = 0;
-    for (const auto& e : manifest.arr) {
-        if (e.has("expect_error") && e["expect_error"].type == isodel::minijson::Value::Bool && e["expect_error"].b) continue;
-        if (e["category"].as_string() == "invalid") continue;
-        const std::string file = e["file"].as_string();
+    for (const auto& e : manifest) {
+        if (isodel::bench::expects_error(e)) continue;
+        if (json_string(e, "category") == "invalid") continue;
+        const std::string file = json_string(e, "file");
         if (!filter.empty() && file.find(filter) == std::string::npos) continue;
-        if (std::find(formats.begin(), formats.end(), e["format"].as_string()) == formats.end()) continue;
-        std::string dims;
-        for (std::size_t k = 0; k < e["dims"].size(); ++k) dims += (k ? "x" : "") + std::to_string(int(e["dims"][k].num));
+        if (std::find(formats.begin(), formats.end(), json_string(e, "format")) == formats.end()) continue;
+        const std::string dims = isodel::bench::dims_string(e);
         isodel::Volume vol;
         try {
             isodel::ReadOptions ro;
-            ro.grid_name = e["grid_name"].as_string();
+            ro.grid_name = json_string(e, "grid_name");
             vol = isodel::read_volume(data + "/" + file, ro);
         } catch (const std::exception& ex) {
             std::printf("%-42s %-12s %5s read error: %s\n", file.c_str(), dims.c_str(), "-", ex.what());
@@ -104,11 +104,11 @@ int main(int argc, char** argv)
             ++failed;
             continue;
         }
-        const isodel::Inside inside = e["inside"].as_string() == "below" ? isodel::Inside::Below : isodel::Inside::Above;
+        const isodel::Inside inside = json_string(e, "inside") == "below" ? isodel::Inside::Below : isodel::Inside::Above;
         for (double eps : eps_list) {
             ++rows;
             isodel::MeshOptions mo;
-            mo.isovalue = e["isovalue"].as_number();
+            mo.isovalue = json_number(e, "isovalue");
             mo.inside = inside;
             mo.eps_voxels = eps;
             mo.threads = threads;
@@ -137,7 +137,9 @@ int main(int argc, char** argv)
                 const double vsecs = std::chrono::duration<double>(std::chrono::steady_clock::now() - v0).count();
                 verify_total += vsecs;
                 ok = r.passed();
-                const char* topo = r.topology_verdict == "undetermined" ? "undet." : verdict(true, r.topology_verdict == "pass");
+                const char* topo = r.topology_verdict == isodel::TopologyVerdict::Undetermined
+                                       ? "undet."
+                                       : verdict(true, r.topology_verdict == isodel::TopologyVerdict::Pass);
                 char h[64];
                 std::snprintf(h, sizeof h, "%s %.3f", verdict(r.hausdorff.checked, r.hausdorff.passed),
                               std::max(r.hausdorff.mesh_to_surface.max_voxels, r.hausdorff.surface_to_mesh.max_voxels));

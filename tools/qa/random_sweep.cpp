@@ -126,7 +126,7 @@ int main(int argc, char** argv)
                 vo.inside = isodel::Inside::Above;
                 vo.eps_voxels = e;
                 const auto rep = isodel::verify_surface(*grid, r.surface, vo);
-                if (rep.topology_verdict == "undetermined") ++row.undetermined;
+                if (rep.topology_verdict == isodel::TopologyVerdict::Undetermined) ++row.undetermined;
                 if (rep.passed())
                     ++row.verified;
                 else

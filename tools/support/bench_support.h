@@ -1,8 +1,11 @@
 #pragma once
-// Small helpers shared by the programs in tools/bench/ (corpus_runner, compare_bench): comma
-// lists on the command line, and one-line topology summaries of a triangle soup or of isodel's
+// Small helpers shared by the programs in tools/bench/ and tools/qa/ (compare_bench,
+// corpus_runner, random_sweep): comma lists on the command line, lookups in
+// ../shared/data/manifest.json, and one-line topology summaries of a triangle soup or of isodel's
 // own statistics, printed the same way so tables can be compared column to column.
 #include <isodel/mesh.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -25,6 +28,38 @@ inline std::vector<std::string> split(const std::string& s)
     while (std::getline(ss, x, ','))
         if (!x.empty()) out.push_back(x);
     return out;
+}
+
+/// A manifest entry's string at \p key, or "" when absent or null (the manifest writes null for
+/// "none", e.g. the grid name of a dense file).
+inline std::string json_string(const nlohmann::json& entry, const char* key)
+{
+    const auto it = entry.find(key);
+    return it != entry.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+/// A manifest entry's number at \p key, or 0 when absent or null.
+inline double json_number(const nlohmann::json& entry, const char* key)
+{
+    const auto it = entry.find(key);
+    return it != entry.end() && it->is_number() ? it->get<double>() : 0.0;
+}
+
+/// A manifest entry marked "expect_error": true (a file every reader must refuse).
+inline bool expects_error(const nlohmann::json& entry)
+{
+    const auto it = entry.find("expect_error");
+    return it != entry.end() && it->is_boolean() && it->get<bool>();
+}
+
+/// The manifest entry's "dims" as "NxNxN".
+inline std::string dims_string(const nlohmann::json& entry)
+{
+    std::string dims;
+    const auto it = entry.find("dims");
+    if (it == entry.end() || !it->is_array()) return dims;
+    for (std::size_t k = 0; k < it->size(); ++k) dims += (k ? "x" : "") + std::to_string((*it)[k].get<long long>());
+    return dims;
 }
 
 /// "N comp, genus g1 g2 ..." (sorted), or a count of components with positive genus when long.

@@ -1,0 +1,133 @@
+// Sparse VDB volumes: the work before the Delaunay triangulation visits the stored leaf nodes
+// and the tiles' faces, never the bounding box (octree/edge_crossings.h), and the result is the
+// mesh of the same F. Pinned down here, end to end through mesh_isosurface and the verifier:
+//  - two narrow-band spheres 1500 voxels apart mesh as the same two spheres 30 voxels apart,
+//    translated (same vertices and triangles, vertex for vertex, up to the translation);
+//  - a fog volume whose core is a tile, with Sigma between the tile and the voxels around it;
+//  - data whose inside reaches the faces of its active box (Sigma closed along the box);
+//  - the same mesh at 1 and 2 threads.
+#include <catch2/catch.hpp>
+
+#include "support/mesher_test_support.h"
+
+#include <openvdb/tools/Composite.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+using namespace isodel;
+
+namespace {
+
+openvdb::FloatGrid::Ptr sphere_pair(float distance)
+{
+    auto a = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(6.f, openvdb::Vec3f(0.f), 1.f, 3.f);
+    auto b = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(5.f, openvdb::Vec3f(distance), 1.f, 3.f);
+    openvdb::tools::csgUnion(a->tree(), b->tree());
+    a->setGridClass(openvdb::GRID_LEVEL_SET);
+    return a;
+}
+
+MeshOptions options(double iso, Inside inside, int threads = 0)
+{
+    MeshOptions mo;
+    mo.isovalue = iso;
+    mo.inside = inside;
+    mo.eps_voxels = 0.5;
+    mo.threads = threads;
+    return mo;
+}
+
+/// The vertices of \p m with those beyond \p split (on x) moved back by \p shift, rounded to
+/// 1e-6 voxel, and the triangles as triples of those keys, both sorted: the mesh up to the order
+/// of its vertices and up to the translation.
+struct Canonical {
+    std::vector<std::array<long long, 3>> vertices;
+    std::vector<std::array<std::array<long long, 3>, 3>> triangles;
+    bool operator==(const Canonical& o) const { return vertices == o.vertices && triangles == o.triangles; }
+};
+
+Canonical canonical(const SurfaceMesh& m, double split, double shift)
+{
+    std::vector<std::array<long long, 3>> key(m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+        const auto& v = m.vertices[i];
+        const double s = v[0] > split ? shift : 0.0;
+        for (int a = 0; a < 3; ++a) key[i][a] = std::llround((v[a] - s) * 1e6);
+    }
+    Canonical c;
+    c.vertices = key;
+    std::sort(c.vertices.begin(), c.vertices.end());
+    for (const auto& t : m.triangles) {
+        std::array<std::array<long long, 3>, 3> k{{key[t[0]], key[t[1]], key[t[2]]}};
+        std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end()); // keeps orientation
+        c.triangles.push_back(k);
+    }
+    std::sort(c.triangles.begin(), c.triangles.end());
+    return c;
+}
+
+} // namespace
+
+TEST_CASE("sparse volumes: a far-apart pair meshes as the compact pair, translated", "[surface][sparse]")
+{
+    const auto near = testing::mesh_and_verify(*sphere_pair(30.f), options(0.0, Inside::Below));
+    const auto far = testing::mesh_and_verify(*sphere_pair(1500.f), options(0.0, Inside::Below));
+    INFO(near.report.summary());
+    INFO(far.report.summary());
+    CHECK(near.report.passed());
+    CHECK(far.report.passed());
+    CHECK(far.genera == std::vector<int>{0, 0});
+    CHECK(canonical(near.mesh.surface, 15.0, 30.0) == canonical(far.mesh.surface, 750.0, 1500.0));
+}
+
+TEST_CASE("sparse volumes: the same mesh at 1 and 2 threads", "[surface][sparse]")
+{
+    const auto grid = sphere_pair(1500.f);
+    const MeshResult one = mesh_isosurface(*grid, options(0.0, Inside::Below, 1));
+    const MeshResult two = mesh_isosurface(*grid, options(0.0, Inside::Below, 2));
+    CHECK(one.surface.vertices == two.surface.vertices);
+    CHECK(one.surface.triangles == two.surface.triangles);
+}
+
+TEST_CASE("sparse volumes: a fog volume with a tile core", "[surface][sparse]")
+{
+    for (const bool active : {true, false}) {
+        INFO((active ? "active" : "inactive") << " tile core");
+        auto grid = openvdb::FloatGrid::create(0.f);
+        grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+        grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(15)), 1.f, active);
+        auto acc = grid->getAccessor();
+        for (int z = -4; z <= 19; ++z)
+            for (int y = -4; y <= 19; ++y)
+                for (int x = -4; x <= 19; ++x) {
+                    const int d = std::max({-x, x - 15, -y, y - 15, -z, z - 15});
+                    if (d > 0) acc.setValueOn(openvdb::Coord(x, y, z), float(1.0 - 0.22 * d));
+                }
+        // 0.9: Sigma between the tile and its first voxels; 0.5: two voxels further out.
+        for (const double iso : {0.9, 0.5}) {
+            INFO("iso " << iso);
+            const auto r = testing::mesh_and_verify(*grid, options(iso, Inside::Above));
+            INFO(r.report.summary());
+            CHECK(r.report.passed());
+            CHECK(r.genera == std::vector<int>{0});
+        }
+    }
+}
+
+TEST_CASE("sparse volumes: the inside reaching the faces of the active box", "[surface][sparse]")
+{
+    // A ball centred on a corner of its box: Sigma is closed along three faces of the box.
+    auto grid = openvdb::FloatGrid::create(-1.f);
+    auto acc = grid->getAccessor();
+    for (int z = 0; z < 12; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x)
+                acc.setValueOn(openvdb::Coord(x, y, z), float(8.3 - std::sqrt(double(x * x + y * y + z * z))));
+    const auto r = testing::mesh_and_verify(*grid, options(0.0, Inside::Above));
+    INFO(r.report.summary());
+    CHECK(r.report.passed());
+    CHECK(r.genera == std::vector<int>{0});
+}
