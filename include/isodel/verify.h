@@ -49,10 +49,6 @@ struct VerifyOptions {
     bool require_determined_topology = false;
 };
 
-/// The verifier's components are the mesher's struct (include/isodel/stats.h). The old name stays
-/// until src/verify/mesh_topology.cpp uses ComponentTopology; new code should not use it.
-using VerifyComponent = ComponentTopology;
-
 /// Check 1's homeomorphism verdict (VerifyReport::topology_verdict).
 enum class TopologyVerdict {
     Fail,        ///< M is not a 2-manifold, or its genera differ from the reference's

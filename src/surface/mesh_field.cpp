@@ -8,6 +8,7 @@
 // (seeding/adaptive_points.h), F read through the grid's exact resampling. The public entry
 // points (and --certify) are mesh_isosurface.cpp.
 #include "surface/mesh_field.h"
+#include "surface/thread_limit.h"
 
 #include "delaunay/initial_delaunay.h"
 #include "seeding/initial_points.h"
@@ -18,7 +19,6 @@
 #include <isodel/errors.h>
 #include <isodel/mesh.h>
 
-#include <tbb/global_control.h>
 
 #include <sys/resource.h>
 
@@ -87,10 +87,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     MeshResult result;
     MeshStats& st = result.stats;
     check_mesh_options(options);
-    std::unique_ptr<tbb::global_control> threads;
-    if (options.threads > 0)
-        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                        std::size_t(options.threads));
+    const ThreadLimit threads(options.threads);
 
     const octree::AdaptiveGrid* adaptive = run.adaptive;
     st.effective_isovalue = run.field->effective_isovalue();

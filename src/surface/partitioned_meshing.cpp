@@ -1,11 +1,11 @@
 #include "surface/partitioned_meshing.h"
+#include "surface/thread_limit.h"
 
 #include "octree/protective_layer.h"
 
 #include <isodel/errors.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -145,10 +145,7 @@ std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockS
 MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
-    std::unique_ptr<tbb::global_control> threads;
-    if (options.threads > 0)
-        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                        std::size_t(options.threads));
+    const ThreadLimit threads(options.threads);
     const std::array<int, 3> collar = collar_voxels(field);
     const std::vector<BlockSpec> blocks = partition_domain(field, options.block_voxels, collar);
     std::vector<std::vector<SeedPoint>> points(blocks.size());

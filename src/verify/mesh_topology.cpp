@@ -192,7 +192,7 @@ struct ComponentCounts {
 
 /// The components of \p mesh with their Euler characteristic (chi = V - E + F), genus and
 /// size, in the order of their first triangle; \p tri_component receives each triangle's.
-std::vector<VerifyComponent> count_components(const SurfaceMesh& mesh, const std::vector<bool>& used,
+std::vector<ComponentTopology> count_components(const SurfaceMesh& mesh, const std::vector<bool>& used,
                                               const std::vector<HalfEdge>& he, std::vector<int>& tri_component)
 {
     const std::size_t nv = mesh.vertices.size(), nf = mesh.triangles.size();
@@ -207,7 +207,7 @@ std::vector<VerifyComponent> count_components(const SurfaceMesh& mesh, const std
     for (std::size_t i = 0; i < he.size(); ++i)
         if (i == 0 || he[i].lo != he[i - 1].lo || he[i].hi != he[i - 1].hi) ++cc.E[std::size_t(cc.comp_of(he[i].lo))];
 
-    std::vector<VerifyComponent> comps(cc.V.size());
+    std::vector<ComponentTopology> comps(cc.V.size());
     for (std::size_t c = 0; c < cc.V.size(); ++c) {
         comps[c].euler = int(cc.V[c] - cc.E[c] + cc.F[c]);
         comps[c].genus = (2 - comps[c].euler) / 2;
@@ -218,7 +218,7 @@ std::vector<VerifyComponent> count_components(const SurfaceMesh& mesh, const std
 
 /// Appends \p comps to rep.components sorted by genus, then size, and renumbers
 /// \p tri_component to match.
-void rank_components(const std::vector<VerifyComponent>& comps, MeshTopologyReport& rep,
+void rank_components(const std::vector<ComponentTopology>& comps, MeshTopologyReport& rep,
                      std::vector<int>& tri_component)
 {
     std::vector<int> order(comps.size());
@@ -259,7 +259,7 @@ MeshTopologyReport mesh_topology(const SurfaceMesh& mesh, std::vector<int>& tri_
     rep.oriented = rep.manifold && rep.misoriented_edges == 0;
 
     // Components: union-find of vertices through triangles; chi = V - E + F per component.
-    const std::vector<VerifyComponent> comps = count_components(mesh, flags.used, he, tri_component);
+    const std::vector<ComponentTopology> comps = count_components(mesh, flags.used, he, tri_component);
     rank_components(comps, rep, tri_component);
     return rep;
 }

@@ -3,7 +3,7 @@
 // bound 3k+1 and fewer E and G points and tetrahedra than meshing its dense resampling -- and
 // `isodel verify` certifies surface and tetrahedra against the adaptive interpolant.
 #include "support/json.h"
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <catch2/catch.hpp>
 

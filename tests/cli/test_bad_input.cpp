@@ -1,7 +1,7 @@
 // Every kind of bad input (include/isodel/errors.h) through the real executable: exit code 2, exactly one line on
 // stderr "isodel: <file>: <problem>", and nothing (neither output nor temporary) in the output
 // folder. Malformed inputs are generated here, in a temporary folder.
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <catch2/catch.hpp>
 #include <openvdb/openvdb.h>

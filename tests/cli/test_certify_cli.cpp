@@ -1,8 +1,8 @@
 // isodel mesh --certify through the real executable: a volume is written after it verifies
 // (property seed 719, which the crease cut before the face slabs got wrong), and a run stopped
 // by a bound exits 1 with one line naming the file and the bound, writing nothing.
-#include "io/test_files.h"
-#include "verify/verify_test_support.h"
+#include "support/test_files.h"
+#include "support/verify_test_support.h"
 
 #include <catch2/catch.hpp>
 #include <openvdb/openvdb.h>

@@ -3,7 +3,7 @@
 // unpartitioned one; with tetrahedra too. Adaptive inputs are refused with a one-line error and
 // no output file.
 #include "support/json.h"
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <catch2/catch.hpp>
 

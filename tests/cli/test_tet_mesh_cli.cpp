@@ -3,7 +3,7 @@
 // vertex, triangle and per-region tetrahedron counts (tests/cli/tet_mesh_readers.py); a bad
 // extension is refused before any meshing.
 #include "support/json.h"
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <catch2/catch.hpp>
 

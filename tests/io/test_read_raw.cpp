@@ -1,5 +1,5 @@
 // Raw volumes: layout from the options, little-endian, x fastest; size must match exactly.
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <isodel/errors.h>
 #include <isodel/volume.h>

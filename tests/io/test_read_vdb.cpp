@@ -1,6 +1,6 @@
 // OpenVDB reader: grid choice, grid class -> inside side, double -> float, half-float files,
 // sparse grids (lattice = active box), and the refusals.
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <isodel/errors.h>
 #include <isodel/volume.h>

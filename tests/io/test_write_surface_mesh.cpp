@@ -1,6 +1,6 @@
 // Surface mesh writers and readers: every format round-trips (STL to float precision), ASCII PLY
 // and polygon faces read, bad extensions refused, no temporary file left behind.
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <isodel/errors.h>
 #include <isodel/surface_mesh.h>

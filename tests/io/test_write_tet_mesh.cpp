@@ -2,7 +2,7 @@
 // as printf's %.17g and every index in decimal -- the text iostream gave before the writers
 // formatted numbers themselves -- so coordinates round-trip exactly through read_tet_mesh, also
 // denormal, huge, negative-zero and non-terminating ones.
-#include "io/test_files.h"
+#include "support/test_files.h"
 
 #include <isodel/surface_mesh.h>
 

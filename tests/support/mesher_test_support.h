@@ -1,6 +1,7 @@
 #pragma once
 // Helpers for the mesher tests: mesh a manifest volume and certify the result with isodel verify
 // (an independent reference topology, exact Hausdorff bounds, exact Delaunay conformity).
+#include "support/skip.h"
 #include "support/verify_test_support.h"
 
 #include <catch2/catch.hpp>
@@ -75,8 +76,8 @@ inline Inside inside_of(const Json& entry)
 inline bool shared_file_present(const std::string& path)
 {
     if (std::ifstream(path)) return true;
-    WARN(path << " not found (../shared/data absent): test skipped");
-    SUCCEED();
+    mark_skipped();
+    WARN("skipped: " << path << " not found (../shared/data absent)");
     return false;
 }
 

@@ -20,6 +20,9 @@ struct Info {
     openvdb::Vec3d world_min, world_max, voxel;
     std::string grid_class;
     openvdb::Index64 active = 0, memory = 0;
+    /// The stored nodes, which isodel's work follows (not the box): leaf nodes of 8^3 voxels,
+    /// and tiles (a constant over a larger box), active ones apart.
+    openvdb::Index64 leaves = 0, tiles = 0, active_tiles = 0;
     openvdb::math::Mat4d index_to_world;
 };
 
@@ -43,6 +46,17 @@ Info gather(const Volume& vol)
     info.grid_class = openvdb::GridBase::gridClassToString(vol.grid->getGridClass());
     info.active = vol.grid->activeVoxelCount();
     info.memory = vol.grid->memUsage();
+    info.leaves = vol.grid->tree().leafCount();
+    auto tile = vol.grid->tree().cbeginValueAll();
+    tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    // Every slot of an internal node without a child is a tile; those inactive at the
+    // background value are only the background, and are not counted.
+    const float background = vol.grid->background();
+    for (; tile; ++tile) {
+        if (!tile.isValueOn() && *tile == background) continue;
+        ++info.tiles;
+        if (tile.isValueOn()) ++info.active_tiles;
+    }
     info.index_to_world = xf.baseMap()->getAffineMap()->getMat4();
     return info;
 }
@@ -66,6 +80,9 @@ void print_json(const Volume& vol, const Info& i)
     o["value_range"] = Json::array({double(vol.value_min), double(vol.value_max)});
     o["background"] = double(vol.grid->background());
     o["active_voxels"] = i.active;
+    o["leaf_nodes"] = i.leaves;
+    o["tiles"] = i.tiles;
+    o["active_tiles"] = i.active_tiles;
     o["memory_bytes"] = i.memory;
     Json m = Json::array();
     for (int r = 0; r < 4; ++r)
@@ -90,7 +107,8 @@ void print_text(const Volume& vol, const Info& i)
       << "voxel size:    " << i.voxel << "\n"
       << "value range:   [" << vol.value_min << ", " << vol.value_max << "]\n"
       << "background:    " << vol.grid->background() << "\n"
-      << "active voxels: " << i.active << "\n"
+      << "active voxels: " << i.active << " in " << i.leaves << " leaf nodes of 8^3 and " << i.active_tiles
+      << " active tiles (" << i.tiles << " tiles in all)\n"
       << "memory:        " << i.memory << " bytes (" << double(i.memory) / (1024.0 * 1024.0) << " MiB)\n";
     std::cout << o.str();
 }
