@@ -45,15 +45,36 @@ public:
             for (int y = lo.y(); y <= hi.y(); ++y)
                 for (int x = lo.x(); x <= hi.x(); ++x) blocks_.emplace_back(x, y, z);
     }
-    /// The six one-sample-thick faces of \p b, each added as above.
-    void add_faces(const CoordBBox& b)
+    /// The faces of tile \p b (a constant with phi of sign \p inside), by 8 x 8 patches, where
+    /// the samples across may be on the other side of v. Tiles and leaves are aligned to the
+    /// 8^3 blocks, so the block across a patch is one leaf (scanned by (a) already), or part of
+    /// one tile or of the background, read at one sample, unless the domain or the active box
+    /// cuts it (then it is scanned). Level sets keep their inside as large tiles side by side:
+    /// their shared faces are never scanned.
+    void add_tile_faces(const CoordBBox& b, bool inside, const SampleField& field, const SampleField::Reader& reader)
     {
-        for (int a = 0; a < 3; ++a)
-            for (const int at : {b.min()[a], b.max()[a]}) {
-                CoordBBox face = b;
-                face.min()[a] = face.max()[a] = at;
-                add(face);
+        const openvdb::FloatTree& tree = field.grid().tree();
+        for (int a = 0; a < 3; ++a) {
+            const int u = (a + 1) % 3, v = (a + 2) % 3;
+            for (const int side : {0, 1}) {
+                const int at = side ? b.max()[a] : b.min()[a];
+                for (int pu = b.min()[u]; pu <= b.max()[u]; pu += kBlock)
+                    for (int pv = b.min()[v]; pv <= b.max()[v]; pv += kBlock) {
+                        CoordBBox patch;
+                        patch.min()[a] = patch.max()[a] = at;
+                        patch.min()[u] = pu;
+                        patch.max()[u] = std::min(pu + kBlock - 1, b.max()[u]);
+                        patch.min()[v] = pv;
+                        patch.max()[v] = std::min(pv + kBlock - 1, b.max()[v]);
+                        CoordBBox across = patch;
+                        across.min()[a] = across.max()[a] = at + (side ? 1 : -1);
+                        const Coord n = across.min();
+                        const bool uniform = field.lattice().isInside(across) && field.domain().isInside(across);
+                        if (uniform && (tree.probeConstLeaf(n) || (reader.phi(n) > 0) == inside)) continue;
+                        add(patch);
+                    }
             }
+        }
     }
     /// Sorted, without repeats: the order the blocks are scanned in does not matter (the points
     /// are sorted afterwards), but each is scanned once.
@@ -80,6 +101,7 @@ std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& l
     // in a leaf or in a tile of the other side, whose blocks are scanned anyway; skipping it
     // matters, since level sets keep huge tiles of the background value.
     const bool background_inside = field.phi_of_value(tree.background()) > 0;
+    const SampleField::Reader reader(field);
     std::vector<CoordBBox> other_side_tiles;
     auto tile = tree.cbeginValueAll();
     tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
@@ -87,7 +109,7 @@ std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& l
         if ((field.phi_of_value(*tile) > 0) == background_inside) continue;
         CoordBBox b;
         tile.getBoundingBox(b);
-        out.add_faces(b);
+        out.add_tile_faces(b, !background_inside, field, reader);
         other_side_tiles.push_back(b);
     }
     // (c) the faces of the domain and of the active box, where the sample inside may be inside:

@@ -121,6 +121,11 @@ TEST_CASE("edge crossings: sparse level sets far apart, as a scan of the whole b
     require_same_as_whole_box(a, 0.0, Inside::Below);
     // Another level: a shell inside the narrow band.
     require_same_as_whole_box(a, 1.2, Inside::Below);
+    // A large sphere: its inside is many tiles side by side, whose shared faces are not scanned.
+    auto big = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(60.f, openvdb::Vec3f(0.5f), 1.f, 3.f);
+    REQUIRE(big->tree().activeTileCount() + big->tree().inactiveVoxelCount() > 0);
+    require_same_as_whole_box(big, 0.0, Inside::Below);
+    require_same_as_whole_box(big, -2.5, Inside::Below);
 }
 
 TEST_CASE("edge crossings: fog volumes with active and inactive tiles", "[octree][sparse]")
