@@ -51,7 +51,6 @@ MeshOptions options(double iso, Inside inside, int threads = 0)
 struct Canonical {
     std::vector<std::array<long long, 3>> vertices;
     std::vector<std::array<std::array<long long, 3>, 3>> triangles;
-    bool operator==(const Canonical& o) const { return vertices == o.vertices && triangles == o.triangles; }
 };
 
 Canonical canonical(const SurfaceMesh& m, double split, double shift)
