@@ -52,6 +52,7 @@ public:
     SampleField(const SampleField& parent, const CoordBBox& clip);
 
     const openvdb::FloatGrid& grid() const { return *grid_; }
+    openvdb::FloatGrid::ConstPtr grid_ptr() const { return grid_; }
     const openvdb::math::Transform& transform() const { return grid_->transform(); }
     /// Samples read through the grid: active bbox grown by one voxel.
     const CoordBBox& domain() const { return domain_; }
@@ -59,6 +60,10 @@ public:
     const CoordBBox& lattice() const { return lattice_; }
     double isovalue() const { return isovalue_; }
     double effective_isovalue() const { return effective_; }
+    /// Meshes {F = v_star} instead of the tie rule's own level: the adaptive path reads its
+    /// coarse field at the input's v* so that one level compares the two functions
+    /// (certified_coarsening.h, which also rejects a coarse sample equal to v_star).
+    void set_effective_isovalue(double v_star) { effective_ = v_star; }
     Inside inside() const { return inside_; }
     double value_min() const { return vmin_; }
     double value_max() const { return vmax_; }

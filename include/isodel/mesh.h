@@ -76,6 +76,15 @@ struct MeshOptions {
     /// So does a reference topology the verifier cannot settle (near-critical data). Costs one
     /// full verification on top of the meshing (its own reference topology of Sigma).
     bool certify = false;
+    /// Certified adaptive meshing (docs/adaptive.md): build an octree from the input and eps,
+    /// coarse wherever a per-cell certificate proves the coarse level set isotopic to the input's
+    /// and within adaptive_share x eps of it, and mesh on its leaves with the rest of eps. The
+    /// guarantees I-III hold against the input's Sigma (certify checks them there). Dense input
+    /// only, without block_voxels.
+    bool adaptive = false;
+    double adaptive_share = 0.5; ///< share of eps the coarsening may spend, in (0, 1)
+    int adaptive_k = 1;          ///< level difference of touching leaves, in [1, 4]
+    int adaptive_max_level = 5;  ///< coarsest leaf 2^level voxels, in [0, 15]
 };
 
 struct MeshResult {
@@ -88,7 +97,8 @@ struct MeshResult {
 };
 
 /// Checks \p options before any work: eps (or eps_voxels) positive and finite, threads,
-/// max_rounds, max_points, block_voxels and facet_angle_deg in their ranges.
+/// max_rounds, max_points, block_voxels, facet_angle_deg and the adaptive options in their
+/// ranges, and adaptive without block_voxels.
 /// \throw InvalidInput naming the option and the value it refuses
 void check_mesh_options(const MeshOptions& options);
 
@@ -109,7 +119,8 @@ struct AdaptiveVolume; // include/isodel/adaptive.h
 /// from `isodel decimate`). E, G and the tetrahedra's G' follow the leaves, so coarse regions
 /// get fewer points; the voxel bound is counted in leaves and held to 3k+1 for E points
 /// (MeshStats::bound_e). F is evaluated through its exact resampling on the finest lattice,
-/// which is also what `isodel verify` checks the result against. Same exceptions as above.
+/// which is also what `isodel verify` checks the result against. Same exceptions as above;
+/// options.adaptive is refused (the volume is adaptive already).
 MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& options,
                            Interrupter* interrupter = nullptr);
 

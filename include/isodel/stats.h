@@ -5,6 +5,7 @@
 /// mesher (MeshStats::components) and the verifier (include/isodel/verify.h) both report.
 /// Plain structs only.
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -55,6 +56,17 @@ struct TetStats {
     std::map<std::string, double> seconds;
 };
 
+/// What certified adaptive meshing did (MeshOptions::adaptive); eps = coarsening + meshing.
+struct AdaptiveStats {
+    bool used = false;
+    double eps_coarsening_world = 0; ///< the coarsening's budget, adaptive_share x eps
+    double distance_world = 0;       ///< the largest certified distance (at most the budget)
+    double eps_meshing_world = 0;    ///< eps - distance_world: the mesher's bound to the coarse Sigma
+    std::vector<std::uint64_t> leaves_per_level; ///< level 0 first
+    std::size_t cells_certified = 0; ///< unit cells the certificate was required of
+    std::size_t repair_rounds = 0, repair_splits = 0;
+};
+
 /// Why the triangle-quality pass (MeshOptions::facet_angle_deg) stopped.
 enum class FacetAngleStop {
     Off,        ///< facet_angle_deg is 0: the pass did not run
@@ -88,7 +100,8 @@ struct MeshStats {
     double eps_world = 0.0;
     /// Seconds per phase: read, points, delaunay, voxel_bound, closed_ball, refine, extract,
     /// tets, write, total (and blocks, the concurrent block phase of partitioned meshing;
-    /// certify with MeshOptions::certify; resample for an adaptive input read densely).
+    /// certify with MeshOptions::certify; resample for an adaptive input read densely;
+    /// adaptive_grid with MeshOptions::adaptive).
     std::map<std::string, double> seconds;
     /// seconds["closed_ball"] + seconds["refine"] by step, over all rounds (the rest is
     /// bookkeeping): grid_cells (Theorem 3: Voronoi cells of G points), facet_records (crossings
@@ -106,6 +119,7 @@ struct MeshStats {
     std::vector<ComponentTopology> components;
     TetStats tets;                        ///< filled when MeshOptions::tets != None
     PartitionStats partition;             ///< filled when MeshOptions::block_voxels > 0
+    AdaptiveStats adaptive;               ///< filled when MeshOptions::adaptive
     /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. It never exceeds
     /// 1: Sigma' has no knife-edge creases (octree/face_slabs.h), so there is no crease parameter
     /// a second meshing could vary, and a failed verification is final.

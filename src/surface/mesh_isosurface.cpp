@@ -6,6 +6,7 @@
 #include "surface/mesh_field.h"
 #include "surface/partitioned_meshing.h"
 #include "octree/adaptive_vdb_format.h"
+#include "octree/certified_coarsening.h"
 #include "octree/resample.h"
 #include "octree/sample_field.h"
 
@@ -62,20 +63,15 @@ std::string verify_failure(const VerifyReport& r)
     return s;
 }
 
-MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive, const MeshOptions& options,
-                     Interrupter* interrupter, std::vector<std::array<double, 3>>* points = nullptr)
+// MeshOptions::certify: verifies \p r against {F = v} of \p grid within \p eps, or throws.
+void certify_against(const openvdb::FloatGrid& grid, Inside inside, double eps, const MeshOptions& options,
+                     MeshResult& r)
 {
-    // Share the grid without copying it: the field keeps a non-owning pointer for the call.
-    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
-    const Inside inside = inside_side(grid, options);
-    const octree::SampleField field(gptr, options.isovalue, inside);
-    MeshResult r = mesh_once(field, adaptive, options, interrupter, points);
-    if (!options.certify) return r;
     const auto t0 = Clock::now();
     VerifyOptions vo;
     vo.isovalue = options.isovalue;
     vo.inside = inside;
-    vo.eps = r.stats.eps_world;
+    vo.eps = eps;
     const VerifyReport rep = verify_surface(grid, r.surface, vo);
     // Near-critical data whose reference topology no refinement settles: nothing to certify
     // against (isodel verify reports it as "undetermined").
@@ -86,6 +82,57 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
     r.stats.certify_attempts = 1;
     r.stats.seconds["certify"] = since(t0);
     r.stats.seconds["total"] += r.stats.seconds["certify"];
+}
+
+MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive, const MeshOptions& options,
+                     Interrupter* interrupter, std::vector<std::array<double, 3>>* points = nullptr)
+{
+    // Share the grid without copying it: the field keeps a non-owning pointer for the call.
+    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
+    const Inside inside = inside_side(grid, options);
+    const octree::SampleField field(gptr, options.isovalue, inside);
+    MeshResult r = mesh_once(field, adaptive, options, interrupter, points);
+    if (options.certify) certify_against(grid, inside, r.stats.eps_world, options, r);
+    return r;
+}
+
+// MeshOptions::adaptive: the certified grid (octree/certified_coarsening.h) spends at most
+// adaptive_share x eps; the mesher gets the rest against the coarse Sigma, at the input's level
+// v*. Then M ~ coarse Sigma ~ Sigma (isotopic) and d_H(M, Sigma) <= eps (docs/adaptive.md).
+MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
+{
+    const auto t0 = Clock::now();
+    openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
+    const Inside inside = inside_side(grid, options);
+    const octree::SampleField fine(gptr, options.isovalue, inside);
+    const double eps = options.eps > 0 ? options.eps : options.eps_voxels * fine.min_voxel_edge();
+    octree::CoarseningBudget budget;
+    budget.distance_world = options.adaptive_share * eps;
+    budget.k = options.adaptive_k;
+    budget.max_level = options.adaptive_max_level;
+    octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter);
+    octree::SampleField coarse(cg.resampled, options.isovalue, inside);
+    coarse.set_effective_isovalue(fine.effective_isovalue());
+    const double t_grid = since(t0);
+
+    MeshOptions mo = options;
+    mo.adaptive = false;
+    mo.certify = false;
+    mo.eps = eps - cg.distance_world;
+    MeshResult r = mesh_once(coarse, cg.grid.max_level() > 0 ? &cg.grid : nullptr, mo, interrupter, nullptr);
+    AdaptiveStats& a = r.stats.adaptive;
+    a.used = true;
+    a.eps_coarsening_world = budget.distance_world;
+    a.distance_world = cg.distance_world;
+    a.eps_meshing_world = mo.eps;
+    a.leaves_per_level = cg.grid.level_histogram();
+    a.cells_certified = cg.cells_certified;
+    a.repair_rounds = cg.rounds;
+    a.repair_splits = cg.splits;
+    r.stats.eps_world = eps;
+    r.stats.seconds["adaptive_grid"] = t_grid;
+    r.stats.seconds["total"] += t_grid;
+    if (options.certify) certify_against(grid, inside, eps, options, r);
     return r;
 }
 
@@ -108,16 +155,30 @@ void check_mesh_options(const MeshOptions& o)
     // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
     if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
         refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");
+    if (!(o.adaptive_share > 0 && o.adaptive_share < 1))
+        refuse("adaptive_share must be in (0, 1) (got " + num(o.adaptive_share) + ")");
+    if (o.adaptive_k < 1 || o.adaptive_k > 4) refuse("adaptive_k must be in [1, 4] (got " + std::to_string(o.adaptive_k) + ")");
+    if (o.adaptive_max_level < 0 || o.adaptive_max_level > 15)
+        refuse("adaptive_max_level must be in [0, 15] (got " + std::to_string(o.adaptive_max_level) + ")");
+    if (o.adaptive && o.block_voxels > 0)
+        refuse("adaptive meshing cannot be combined with partitioned meshing (block_voxels) yet");
 }
 
 MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
 {
+    if (options.adaptive) {
+        check_mesh_options(options);
+        return mesh_certified_adaptive(grid, options, interrupter);
+    }
     return mesh_grid(grid, nullptr, options, interrupter);
 }
 
 MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& options, Interrupter* interrupter)
 {
     if (!volume.samples) throw InvalidInput("adaptive volume without samples");
+    if (options.adaptive)
+        throw InvalidInput("adaptive meshing needs the original volume: this input is adaptive already (decimated); "
+                           "mesh it without adaptive, or mesh the original");
     const auto t0 = Clock::now();
     const octree::AdaptiveGrid g = octree::to_adaptive_grid(volume);
     const openvdb::FloatGrid::Ptr dense = octree::resample_dense(g);

@@ -44,6 +44,16 @@ std::string to_json(const MeshStats& s)
                           {"block_points", p.block_points},
                           {"seam_points", p.seam_points}};
     }
+    if (s.adaptive.used) {
+        const AdaptiveStats& a = s.adaptive;
+        o["adaptive"] = {{"eps_coarsening_world", a.eps_coarsening_world},
+                         {"distance_world", a.distance_world},
+                         {"eps_meshing_world", a.eps_meshing_world},
+                         {"leaves_per_level", a.leaves_per_level},
+                         {"cells_certified", a.cells_certified},
+                         {"repair_rounds", a.repair_rounds},
+                         {"repair_splits", a.repair_splits}};
+    }
     if (s.certify_attempts > 0) o["certify_attempts"] = s.certify_attempts;
     const TetStats& t = s.tets;
     if (t.vertices > 0) {

@@ -7,6 +7,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <filesystem>
+
 using namespace isodel::test;
 using isodel::testing::Json;
 using isodel::testing::read_json_file;
@@ -54,4 +57,46 @@ TEST_CASE("decimate then mesh: the adaptive file is meshed on its leaves and ver
     INFO(v.out << v.err);
     CHECK(v.status == 0);
     CHECK(v.out.find("VERIFIED") != std::string::npos);
+}
+
+TEST_CASE("mesh --adaptive: certified against the input, stats report the eps split", "[cli][adaptive]")
+{
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string out = tmp / "m.ply", stats = tmp / "m.json";
+    const RunResult r = run_isodel("mesh " + shell_quote(torus) + " --iso 0 --adaptive --certify --quiet -o " +
+                                       shell_quote(out) + " --stats " + shell_quote(stats),
+                                   tmp.path());
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    const Json s = read_json_file(stats);
+    const Json& a = s.at("adaptive");
+    CHECK(a.at("distance_world").get<double>() <= a.at("eps_coarsening_world").get<double>());
+    CHECK(a.at("eps_meshing_world").get<double>() ==
+          Approx(s.at("eps_world").get<double>() - a.at("distance_world").get<double>()));
+    CHECK(a.at("leaves_per_level").size() >= 2);
+    CHECK(s.at("certify_attempts").get<int>() == 1);
+    // An independent run of isodel verify against the input agrees.
+    const RunResult v = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.5 --mesh " + shell_quote(out),
+                                   tmp.path());
+    INFO(v.out << v.err);
+    CHECK(v.status == 0);
+}
+
+TEST_CASE("mesh --adaptive: an adaptive input and --blocks are refused with one line, nothing written",
+          "[cli][adaptive]")
+{
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string adaptive = tmp / "dec.vdb", out = tmp / "m.ply";
+    REQUIRE(run_isodel("decimate " + shell_quote(torus) + " -o " + shell_quote(adaptive) + " --k 1 --tolerance 0.005",
+                       tmp.path()).status == 0);
+    for (const std::string& args : {shell_quote(adaptive) + " --adaptive", shell_quote(torus) + " --adaptive --blocks 16"}) {
+        const RunResult r = run_isodel("mesh " + args + " --iso 0 --quiet -o " + shell_quote(out), tmp.path());
+        INFO(args << ": " << r.err);
+        CHECK(r.status != 0);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK(r.err.find("adaptive") != std::string::npos);
+        CHECK_FALSE(std::filesystem::exists(out));
+    }
 }

@@ -16,7 +16,7 @@ using namespace isodel::octree;
 
 TEST_CASE("resample of a uniform grid is the grid", "[octree][resample]")
 {
-    auto s = testing::random_samples(10, 4);
+    auto s = isodel::octree::testing::random_samples(10, 4);
     const AdaptiveGrid g(s, 1);
     auto d = resample_dense(g);
     auto a = d->getConstAccessor();
@@ -30,7 +30,7 @@ TEST_CASE("the dense trilinear interpolant of the resampled grid equals the adap
     std::mt19937 rng(8);
     std::uniform_real_distribution<double> u(-1, 18);
     for (unsigned seed = 1; seed <= 6; ++seed) {
-        auto g = testing::random_adaptive(400 + seed, 1 + seed % 3, 18, 4);
+        auto g = isodel::octree::testing::random_adaptive(400 + seed, 1 + seed % 3, 18, 4);
         auto dense = resample_dense(*g);
         const AdaptiveGrid dg(dense, 1);
         CHECK(dg.domain() == g->domain()); // same domain rule

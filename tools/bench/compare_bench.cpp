@@ -6,6 +6,7 @@
 //   isodel 1thr    isodel::mesh_isosurface, surface, threads = 1
 //   isodel 2thr    the same, threads = 2
 //   isodel blocks  the same, partitioned: MeshOptions::block_voxels = --blocks (32), threads = 2
+//   isodel adaptive  MeshOptions::adaptive (certified octree, guarantees against the input), threads = 2
 //   isodel+tets    the same with MeshOptions::tets = Inside, threads = 2
 //   Mesh_3 surf    CGAL Mesh_3 on an implicit domain evaluating the same trilinear interpolant F
 //                  (as tools/bench/tet_quality_vs_mesh3.cpp): facet_distance = eps, facet_angle 30,
@@ -26,7 +27,7 @@
 // of "isodel 2thr" (of "isodel+tets" for the Mesh_3 tets row) divided by this row's median time.
 //
 //   compare_bench [--data DIR] [--filter S1,S2] [--all] [--eps-voxels 0.5,0.1] [--reps 3]
-//                 [--timeout SECONDS] [--methods i1,i2,ib,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]
+//                 [--timeout SECONDS] [--methods i1,i2,ib,ia,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]
 // --quick = --reps 1 --eps-voxels 0.5 on 3 volumes (molmap protein, torus, skull).
 #include <isodel/mesh.h>
 #include <isodel/volume.h>
@@ -88,9 +89,9 @@ using DT = CGAL::Delaunay_triangulation_3<K>;
 using V3 = std::array<double, 3>;
 using Tri = std::array<std::int64_t, 3>;
 
-enum Method { I1, I2, IB, IT, MS, MT, VDB, DTM, DTX, NMETHODS };
-const char* kKey[NMETHODS] = {"i1", "i2", "ib", "it", "ms", "mt", "vdb", "dt", "dtx"};
-const char* kLabel[NMETHODS] = {"isodel 1thr", "isodel 2thr", "isodel blocks 2thr", "isodel+tets 2thr", "Mesh_3 surf",
+enum Method { I1, I2, IB, IA, IT, MS, MT, VDB, DTM, DTX, NMETHODS };
+const char* kKey[NMETHODS] = {"i1", "i2", "ib", "ia", "it", "ms", "mt", "vdb", "dt", "dtx"};
+const char* kLabel[NMETHODS] = {"isodel 1thr", "isodel 2thr", "isodel blocks 2thr", "isodel adaptive 2thr", "isodel+tets 2thr", "Mesh_3 surf",
                                 "Mesh_3 tets", "VDB volumeToMesh", "DT(E+G+N)", "DT(E+G+N) traits"};
 int g_block_voxels = 32; ///< --blocks: block size of the "isodel blocks" row
 
@@ -214,7 +215,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
     isodel::ReadOptions ro;
     ro.grid_name = ds.grid_name;
     const isodel::Volume vol = isodel::read_volume(path, ro);
-    if (m == I1 || m == I2 || m == IB || m == IT) {
+    if (m == I1 || m == I2 || m == IB || m == IA || m == IT) {
         isodel::MeshOptions mo;
         mo.isovalue = ds.isovalue;
         mo.inside = ds.inside;
@@ -222,6 +223,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         mo.threads = m == I1 ? 1 : 2;
         if (m == IT) mo.tets = isodel::TetRegion::Inside;
         if (m == IB) mo.block_voxels = g_block_voxels;
+        mo.adaptive = m == IA; // MeshOptions::adaptive, certified against the input
         std::vector<std::array<double, 3>> points; // for the DT(E+G+N) row
         const auto t0 = std::chrono::steady_clock::now();
         isodel::MeshResult r =
@@ -458,7 +460,7 @@ int main(int argc, char** argv)
         } else if (a == "--quick") quick = true;
         else {
             std::cerr << "usage: compare_bench [--data DIR] [--filter S1,S2] [--all] [--eps-voxels 0.5,0.1] [--reps 3]\n"
-                         "                     [--timeout SECONDS] [--methods i1,i2,ib,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]\n";
+                         "                     [--timeout SECONDS] [--methods i1,i2,ib,ia,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]\n";
             return 2;
         }
     }
@@ -544,7 +546,7 @@ int main(int argc, char** argv)
                 if (!enabled[std::size_t(m)]) continue;
                 const Summary& s = t.s[m];
                 std::string notes = s.last.topo;
-                if (m == I1 || m == I2 || m == IB || m == IT) {
+                if (m == I1 || m == I2 || m == IB || m == IA || m == IT) {
                     if (s.last.extra >= 0) notes += (notes.empty() ? "" : "; ") + std::string("|E+G+N| ") + std::to_string(s.last.extra);
                     if (!s.last.msg.empty()) notes += (s.have ? "; phases: " : "ERROR: ") + s.last.msg;
                 } else if (m == DTM || m == DTX) {

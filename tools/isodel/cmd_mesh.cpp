@@ -27,6 +27,9 @@ struct MeshCliOptions {
     bool certify = false;
     bool no_improve = false;
     double facet_angle = 0;
+    bool adaptive = false;
+    double adaptive_share = 0.5;
+    int adaptive_k = 1, adaptive_max_level = 5;
 };
 } // namespace
 
@@ -65,6 +68,17 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     cmd->add_flag("--certify", o->certify,
                   "Verify the surface before writing it (topology against an independent computation, eps, "
                   "manifold, Delaunay); exit 1 and write nothing if it fails");
+    cmd->add_flag("--adaptive", o->adaptive,
+                  "Certified adaptive meshing: coarse cells where a certificate proves the coarse level set "
+                  "isotopic to the input's and within a share of eps of it (docs/adaptive.md); the guarantees "
+                  "hold against the input");
+    cmd->add_option("--adaptive-share", o->adaptive_share, "--adaptive: share of eps the coarsening may spend (default 0.5)")
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--adaptive-k", o->adaptive_k, "--adaptive: level difference of touching cells (default 1)")
+        ->check(CLI::Range(1, 4));
+    cmd->add_option("--adaptive-max-level", o->adaptive_max_level,
+                    "--adaptive: coarsest cell, 2^level voxels (default 5)")
+        ->check(CLI::Range(0, 15));
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->add_flag("--trace", o->trace, "Print the mesher's trace on stderr: one line per refinement round and check");
     cmd->callback([o, &exit_code] {
@@ -90,6 +104,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
         mo.improve_tets = !o->no_improve;
         mo.facet_angle_deg = o->facet_angle;
+        mo.adaptive = o->adaptive;
+        mo.adaptive_share = o->adaptive_share;
+        mo.adaptive_k = o->adaptive_k;
+        mo.adaptive_max_level = o->adaptive_max_level;
         check_mesh_options(mo); // before any work
 
         ProgressReporter progress(o->quiet, o->trace);
@@ -102,6 +120,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.inside = o->inside.empty() ? vol.default_inside
                                       : (o->inside == "above" ? Inside::Above : Inside::Below);
         // An adaptive file (`isodel decimate`): mesh on its leaves (Property IV).
+        if (vol.adaptive_levels > 1 && mo.adaptive)
+            throw InvalidInput(o->in.path + ": --adaptive needs the original volume, and this file is adaptive "
+                               "already (isodel decimate); mesh it without --adaptive, or mesh the original");
         MeshResult res;
         try {
             res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)

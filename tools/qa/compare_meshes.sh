@@ -1,10 +1,11 @@
 #!/bin/bash
-# compare_meshes.sh OLD_ISODEL NEW_ISODEL [OUT_DIR] [EPS_VOXELS]
+# compare_meshes.sh OLD_ISODEL|OLD_DIR NEW_ISODEL [OUT_DIR] [EPS_VOXELS]
 # Meshes every .vdb volume of ../shared/data/manifest.json (entries without expect_error) with
 # two isodel executables at eps (default 0.5 voxel, 2 threads), and the tetrahedra of three
 # volumes (1hpv_molmap inside, torus both, eight outside at 1 thread), then compares the files
 # byte for byte: the check that a change not meant to change meshes did not. Exit 1 on any
-# difference or failure.
+# difference or failure. OLD may be a directory of meshes an earlier run wrote (OUT_DIR/new of
+# the base commit), so the base need not be rebuilt.
 set -u
 OLD=$1; NEW=$2; OUT=${3:-/tmp/isodel-compare}; EPS=${4:-0.5}
 DATA=$(cd "$(dirname "$0")/../../../shared/data" && pwd) || { echo "../shared/data not found"; exit 2; }
@@ -27,9 +28,11 @@ PY
   "$1" mesh "$DATA/levelset/eight.vdb" -o "$2/eight.ply" --tets "$2/eight.msh" --region outside --iso 0 \
     --inside below --eps-voxels "$EPS" --threads 1 --quiet || echo "FAILED eight tets"
 }
-rm -rf "$OUT"; mesh_all "$OLD" "$OUT/old"; mesh_all "$NEW" "$OUT/new"
+rm -rf "$OUT"
+if [ -d "$OLD" ]; then OLD_DIR=$OLD; else OLD_DIR=$OUT/old; mesh_all "$OLD" "$OLD_DIR"; fi
+mesh_all "$NEW" "$OUT/new"
 same=0; diff=0
-for f in "$OUT"/old/*; do
+for f in "$OLD_DIR"/*; do
   if cmp -s "$f" "$OUT/new/$(basename "$f")"; then same=$((same + 1)); else diff=$((diff + 1)); echo "DIFFERS $(basename "$f")"; fi
 done
 echo "$same files identical, $diff differ"

@@ -1,0 +1,354 @@
+#include "octree/certified_coarsening.h"
+
+#include "octree/balance.h"
+#include "octree/interpolant.h"
+#include "octree/resample.h"
+
+#include <isodel/errors.h>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+
+namespace isodel::octree {
+
+namespace {
+
+// A quotient delta / g rounded in double; the margin keeps the comparison on the safe side of
+// the rounding of two float differences and one division.
+constexpr double kRoundingMargin = 1.0 + 1e-9;
+
+// The strict sign shared by every difference along one axis, tracked with the smallest
+// magnitude; broken by the first zero or sign change.
+struct Monotone {
+    int sign = 0;
+    bool ok = true;
+    double min_abs = std::numeric_limits<double>::infinity();
+    void add(double diff)
+    {
+        if (!ok) return;
+        const int s = diff > 0 ? 1 : diff < 0 ? -1 : 0;
+        if (s == 0 || (sign != 0 && s != sign)) {
+            ok = false;
+            return;
+        }
+        sign = s;
+        min_abs = std::min(min_abs, std::abs(diff));
+    }
+};
+
+// The distance a certified axis allows: delta / g voxels, at most one voxel (the certificate's
+// path must stay inside the block) and within the budget in world units.
+bool within_budget(double delta, double g, double edge, double budget_world, double& distance_world)
+{
+    const double voxels = delta / g * kRoundingMargin;
+    distance_world = voxels * edge;
+    return voxels <= 1.0 && distance_world <= budget_world;
+}
+
+// Condition for a parent P to replace its children during construction: P's own trilinear
+// interpolant (from its corner samples) passes the certificate's tests on P's span, or the span
+// lies off Sigma (every node of one strict sign, so P's interpolant is of that sign too). The
+// hanging nodes and the one-cell rim are left to the repair rounds, which check the continuous
+// interpolant itself.
+bool parent_certified(const SampleField::Reader& f, const CellId& p, const std::array<double, 3>& edges,
+                      double budget_world)
+{
+    const int s = p.size(), n = s + 1;
+    const std::size_t nodes = std::size_t(n) * n * n;
+    std::vector<double> fine(nodes), coarse(nodes);
+    auto idx = [&](int i, int j, int k) { return (std::size_t(k) * n + j) * n + i; };
+    bool pos = false, neg = false;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const double v = f.phi(p.origin.offsetBy(i, j, k));
+                fine[idx(i, j, k)] = v;
+                (v > 0 ? pos : neg) = true;
+            }
+    if (!(pos && neg)) return true;
+    double c[8];
+    for (int m = 0; m < 8; ++m) c[m] = fine[idx((m & 1) * s, ((m >> 1) & 1) * s, ((m >> 2) & 1) * s)];
+    const auto& tri = trilinear();
+    const double inv = 1.0 / s;
+    double delta = 0;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const std::size_t q = idx(i, j, k);
+                coarse[q] = tri.eval(c, Vec3d(i * inv, j * inv, k * inv));
+                delta = std::max(delta, std::abs(coarse[q] - fine[q]));
+            }
+    // The unit sub-cells either level set can meet (fine and coarse corners of both signs).
+    std::vector<char> band(std::size_t(s) * s * s);
+    for (int k = 0; k < s; ++k)
+        for (int j = 0; j < s; ++j)
+            for (int i = 0; i < s; ++i) {
+                bool p2 = false, n2 = false;
+                for (int m = 0; m < 8; ++m) {
+                    const std::size_t q = idx(i + (m & 1), j + ((m >> 1) & 1), k + ((m >> 2) & 1));
+                    for (double v : {fine[q], coarse[q]}) (v > 0 ? p2 : n2) = true;
+                }
+                band[(std::size_t(k) * s + j) * s + i] = p2 && n2;
+            }
+    for (int d = 0; d < 3; ++d) {
+        Monotone mono;
+        for (int m = 0; m < 8; ++m) // the four coarse d-edges, per unit length
+            if (!(m & (1 << d))) mono.add((c[m | (1 << d)] - c[m]) * inv);
+        for (int k = 0; k < s && mono.ok; ++k)
+            for (int j = 0; j < s && mono.ok; ++j)
+                for (int i = 0; i < s && mono.ok; ++i) {
+                    if (!band[(std::size_t(k) * s + j) * s + i]) continue;
+                    for (int m = 0; m < 8; ++m) {
+                        if (m & (1 << d)) continue;
+                        const int x = i + (m & 1), y = j + ((m >> 1) & 1), z = k + ((m >> 2) & 1);
+                        mono.add(fine[idx(x + (d == 0), y + (d == 1), z + (d == 2))] - fine[idx(x, y, z)]);
+                    }
+                }
+        double distance = 0;
+        if (mono.ok && within_budget(delta, mono.min_abs, edges[d], budget_world, distance)) return true;
+    }
+    return false;
+}
+
+std::vector<CellId> level_candidates(const AdaptiveGrid& g, int l)
+{
+    std::vector<CellId> out;
+    if (l == 1) {
+        // Only cells touching allocated samples can differ from their neighbours; constant
+        // regions (tiles, background) stay level 0, which costs no storage.
+        for (const Coord& u : value_cells_sparse(g)) out.push_back({align_down(u, 1), 1});
+    } else {
+        for (const CellId& c : g.leaves(l - 1)) out.push_back({align_down(c.origin, l), l});
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+void check_interrupt(Interrupter* intr, int percent)
+{
+    if (intr && intr->wasInterrupted(percent)) throw Cancelled("adaptive grid: interrupted");
+}
+
+// Bottom-up construction: level by level, every parent whose 8 children are leaves, which keeps
+// the grid k-balanced, and which parent_certified accepts.
+void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const CoarseningBudget& budget,
+                       const std::array<double, 3>& edges, Interrupter* intr)
+{
+    for (int l = 1; l <= budget.max_level; ++l) {
+        check_interrupt(intr, 40 * l / std::max(1, budget.max_level));
+        const auto cand = level_candidates(g, l);
+        std::vector<char> ok(cand.size(), 0);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.size(), 64),
+                          [&](const tbb::blocked_range<std::size_t>& rg) {
+                              AdaptiveGrid::Reader r(g);
+                              SampleField::Reader f(fine);
+                              for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
+                                  const CellId& p = cand[i];
+                                  if (!g.inside(p)) continue;
+                                  const int h = p.size() / 2;
+                                  bool children = true;
+                                  for (int m = 0; m < 8 && children; ++m)
+                                      children = r.is_leaf({p.origin.offsetBy((m & 1) * h, ((m >> 1) & 1) * h,
+                                                                              ((m >> 2) & 1) * h),
+                                                            l - 1});
+                                  if (!children) continue;
+                                  if (l > budget.k && touches_finer_than(r, p, l - budget.k)) continue;
+                                  ok[i] = parent_certified(f, p, edges, budget.distance_world);
+                              }
+                          });
+        std::size_t merged = 0;
+        for (std::size_t i = 0; i < cand.size(); ++i)
+            if (ok[i]) {
+                g.merge(cand[i]);
+                ++merged;
+            }
+        if (!merged) break;
+    }
+    g.trim_levels();
+    balance(g, budget.k);
+}
+
+// sum over leaves of (8^level - 1) / 7: the most splits that can still happen.
+double split_potential(const AdaptiveGrid& g)
+{
+    double total = 0;
+    for (int l = 1; l <= g.max_level(); ++l)
+        total += double(g.leaves(l).size()) * (std::pow(8.0, l) - 1) / 7;
+    return total;
+}
+
+// The coarse leaves whose closed spans meet the block of \p u (nodes u - 1 .. u + 2): the
+// leaves its values come from, hanging-node constraints included.
+void leaves_around(const AdaptiveGrid::Reader& r, const Coord& u, std::vector<CellId>& out)
+{
+    for (int z = -2; z <= 2; ++z)
+        for (int y = -2; y <= 2; ++y)
+            for (int x = -2; x <= 2; ++x)
+                if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) out.push_back(*leaf);
+}
+
+} // namespace
+
+std::array<double, 3> voxel_edges(const SampleField& field)
+{
+    std::array<double, 3> e{};
+    for (int a = 0; a < 3; ++a) {
+        Vec3d d(0.0);
+        d[a] = 1.0;
+        e[a] = (field.index_to_world(d) - field.index_to_world(Vec3d(0.0))).length();
+    }
+    return e;
+}
+
+CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Reader& a, const Coord& u,
+                             const std::array<double, 3>& edges, double budget_world)
+{
+    CellCertificate cert;
+    // The block's 4 x 4 x 4 nodes, u - 1 .. u + 2, of both functions.
+    double vf[4][4][4], va[4][4][4];
+    for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                const Coord n = u.offsetBy(i - 1, j - 1, k - 1);
+                vf[k][j][i] = f.phi(n);
+                va[k][j][i] = a.phi(n);
+            }
+    double delta = 0;
+    for (int m = 0; m < 8; ++m) {
+        const int i = 1 + (m & 1), j = 1 + ((m >> 1) & 1), k = 1 + ((m >> 2) & 1);
+        if (va[k][j][i] == 0) return cert; // the mesher needs phi != 0 at every sample (sample_field.h)
+        delta = std::max(delta, std::abs(vf[k][j][i] - va[k][j][i]));
+    }
+    // Band cells of the block: the only ones a level set {phi_t = 0} can meet.
+    bool band[3][3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                bool pos = false, neg = false;
+                for (int m = 0; m < 8; ++m) {
+                    const int x = i + (m & 1), y = j + ((m >> 1) & 1), z = k + ((m >> 2) & 1);
+                    for (double v : {vf[z][y][x], va[z][y][x]}) (v > 0 ? pos : neg) = true;
+                }
+                band[k][j][i] = pos && neg;
+            }
+    for (int d = 0; d < 3; ++d) {
+        Monotone mono;
+        for (int k = 0; k < 3 && mono.ok; ++k)
+            for (int j = 0; j < 3 && mono.ok; ++j)
+                for (int i = 0; i < 3 && mono.ok; ++i) {
+                    if (!band[k][j][i]) continue;
+                    for (int m = 0; m < 8; ++m) { // the cell's four d-edges: corners with bit d clear
+                        if (m & (1 << d)) continue;
+                        const int x = i + (m & 1), y = j + ((m >> 1) & 1), z = k + ((m >> 2) & 1);
+                        const int x1 = x + (d == 0), y1 = y + (d == 1), z1 = z + (d == 2);
+                        mono.add(vf[z1][y1][x1] - vf[z][y][x]);
+                        mono.add(va[z1][y1][x1] - va[z][y][x]);
+                    }
+                }
+        double distance = 0;
+        if (!mono.ok || mono.sign == 0 || !within_budget(delta, mono.min_abs, edges[d], budget_world, distance))
+            continue;
+        if (!cert.ok || distance < cert.distance_world) {
+            cert.ok = true;
+            cert.axis = d;
+            cert.distance_world = distance;
+        }
+    }
+    return cert;
+}
+
+std::vector<Coord> cells_to_certify(const AdaptiveGrid& g, const SampleField& fine, const SampleField& coarse)
+{
+    std::vector<CellId> coarse_leaves;
+    for (int l = 1; l <= g.max_level(); ++l) {
+        const auto ls = g.leaves(l);
+        coarse_leaves.insert(coarse_leaves.end(), ls.begin(), ls.end());
+    }
+    std::vector<Coord> out;
+    std::mutex mu;
+    const CoordBBox cells = g.unit_cells();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, coarse_leaves.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& rg) {
+                          SampleField::Reader f(fine), a(coarse);
+                          std::vector<Coord> local;
+                          for (std::size_t i = rg.begin(); i < rg.end(); ++i)
+                              for (auto it = coarse_leaves[i].nodes().begin(); it; ++it) {
+                                  const Coord n = *it;
+                                  if (f.phi(n) == a.phi(n)) continue;
+                                  for (int m = 0; m < 8; ++m) {
+                                      const Coord u = n.offsetBy(-(m & 1), -((m >> 1) & 1), -((m >> 2) & 1));
+                                      if (!cells.isInside(u)) continue;
+                                      bool pos = false, neg = false;
+                                      for (int c = 0; c < 8; ++c) {
+                                          const Coord q = u.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+                                          for (double v : {f.phi(q), a.phi(q)}) (v > 0 ? pos : neg) = true;
+                                      }
+                                      if (pos && neg) local.push_back(u);
+                                  }
+                              }
+                          std::lock_guard<std::mutex> lock(mu);
+                          out.insert(out.end(), local.begin(), local.end());
+                      });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudget& budget, Interrupter* intr)
+{
+    if (budget.k < 1) throw InvalidInput("adaptive grid: k must be >= 1");
+    if (budget.max_level < 0 || budget.max_level > AdaptiveGrid::kMaxLevel)
+        throw InvalidInput("adaptive grid: max level must be in [0, 15]");
+    const auto edges = voxel_edges(fine);
+    CertifiedGrid out{AdaptiveGrid(fine.grid_ptr(), budget.k), nullptr};
+    AdaptiveGrid& g = out.grid;
+    coarsen_bottom_up(g, fine, budget, edges, intr);
+
+    // Repair rounds: check the certificate on the continuous interpolant, split around failures.
+    const double round_bound = split_potential(g) + 1;
+    for (;;) {
+        check_interrupt(intr, 50);
+        out.resampled = resample_dense(g);
+        SampleField coarse(out.resampled, fine.isovalue(), fine.inside());
+        coarse.set_effective_isovalue(fine.effective_isovalue());
+        const auto cells = cells_to_certify(g, fine, coarse);
+        std::vector<char> failed(cells.size(), 0);
+        std::vector<double> distance(cells.size(), 0);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 256),
+                          [&](const tbb::blocked_range<std::size_t>& rg) {
+                              SampleField::Reader f(fine), a(coarse);
+                              for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
+                                  const CellCertificate c = certify_cell(f, a, cells[i], edges, budget.distance_world);
+                                  failed[i] = !c.ok;
+                                  distance[i] = c.distance_world;
+                              }
+                          });
+        out.cells_certified = cells.size();
+        std::vector<CellId> split;
+        AdaptiveGrid::Reader r(g);
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            if (failed[i]) leaves_around(r, cells[i], split);
+        if (split.empty()) {
+            out.distance_world = cells.empty() ? 0 : *std::max_element(distance.begin(), distance.end());
+            break;
+        }
+        if (double(++out.rounds) > round_bound) // each round splits a leaf: cannot happen
+            throw GuaranteeViolated("adaptive grid: the repair rounds exceeded their bound of " +
+                                    std::to_string(round_bound) + " (the split potential)");
+        std::sort(split.begin(), split.end());
+        split.erase(std::unique(split.begin(), split.end()), split.end());
+        for (const CellId& c : split) g.split(c);
+        out.splits += split.size();
+        balance(g, budget.k);
+        g.trim_levels();
+    }
+    return out;
+}
+
+} // namespace isodel::octree

@@ -1,0 +1,83 @@
+#pragma once
+/// \file certified_coarsening.h
+/// The adaptive grid built from the input and eps by itself (MeshOptions::adaptive, paper
+/// Property IV): coarse leaves wherever a certificate proves that the coarse level set is
+/// isotopic to the fine one and within a share of eps of it; docs/adaptive.md has the proof.
+///
+/// Both functions are piecewise trilinear on the unit lattice (a coarse leaf restricted to a
+/// unit sub-cell is the trilinear function of the sub-cell's corners, resample.h), so they are
+/// compared node by node: phi_f (the input) and phi_a (the adaptive interpolant), both read as
+/// SampleField phi with the input's level v* (SampleField::set_effective_isovalue).
+///
+/// The certificate of a unit cell u (certify_cell) holds when
+///  (a) an axis d and a sign s exist such that every d-edge of every band cell (one whose 16
+///      corner values, of phi_f and phi_a, are not all of one strict sign) of the 3x3x3 block of
+///      unit cells around u has a difference of strict sign s in phi_f and in phi_a. Then every
+///      phi_t = (1-t) phi_f + t phi_a is strictly monotone along s e_d on those cells (a
+///      trilinear function's d-derivative is bilinear in the other two coordinates, so its
+///      extremes on a cell are its four d-edge differences), which are the only cells
+///      {phi_t = 0} meets: it is a graph over the plane normal to d there, for every t;
+///  (b) delta / g <= min(1, budget along d), delta the largest |phi_f - phi_a| at u's corners,
+///      g the smallest |difference| of (a): a point of {phi_a = 0} in u reaches {phi_f = 0}
+///      (and back) within delta / g voxels along d, inside the block (the path cannot enter a
+///      cell off the band first: phi_a has left 0 along it, with the sign of the cell it
+///      would enter).
+/// It is required of every "changed" band cell (a corner where the two functions differ). Unchanged
+/// cells keep phi_t = phi_f. So {phi_f = 0} and {phi_a = 0} are isotopic, and the Hausdorff
+/// distance between them is at most the largest certified distance (docs/adaptive.md).
+#include "octree/adaptive_grid.h"
+#include "octree/sample_field.h"
+
+#include <isodel/interrupt.h>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace isodel::octree {
+
+/// The share of eps the coarsening may spend, and the shape of the grid.
+struct CoarseningBudget {
+    double distance_world = 0; ///< the largest certified distance allowed, world units
+    int k = 1;                 ///< level difference of touching leaves
+    int max_level = 5;         ///< coarsest leaf: 2^max_level voxels
+};
+
+/// One unit cell's certificate (see the file comment).
+struct CellCertificate {
+    bool ok = false;
+    int axis = -1;              ///< the axis d of (a); the lowest axis of the shortest distance
+    double distance_world = 0;  ///< delta / g times the voxel edge along d
+};
+
+/// Voxel edge lengths along the three index axes (world units) of \p field's transform.
+std::array<double, 3> voxel_edges(const SampleField& field);
+
+/// The certificate of unit cell \p u for the fine reader \p f and coarse reader \p a; \p edges from
+/// voxel_edges, \p budget_world the distance allowed.
+CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Reader& a, const Coord& u,
+                             const std::array<double, 3>& edges, double budget_world);
+
+/// The adaptive grid and what was measured of it.
+struct CertifiedGrid {
+    AdaptiveGrid grid;                     ///< samples: the input (never pruned)
+    openvdb::FloatGrid::Ptr resampled;     ///< the adaptive interpolant on the unit lattice
+    double distance_world = 0;             ///< the largest certified distance (<= the budget)
+    std::size_t cells_certified = 0;       ///< changed cells that needed a certificate
+    std::size_t rounds = 0, splits = 0;    ///< repair rounds and leaves split by them
+};
+
+/// Builds the grid bottom-up (a parent replaces its 8 children when its own interpolant passes
+/// the certificate's tests on its span, or when its span is off Sigma), then checks the
+/// certificate on every changed cell of the continuous interpolant and splits the leaves around
+/// every cell that fails, until none does. Each split lowers sum over leaves of (8^level - 1) / 7,
+/// which bounds the repair rounds; the uniform grid (nothing changed) always passes.
+/// \throw Cancelled when \p interrupter asks to stop.
+CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudget& budget,
+                                   Interrupter* interrupter = nullptr);
+
+/// The unit cells of \p g whose corners differ between \p f and \p a and whose 16 corner phi
+/// values are not all of one strict sign: the cells the certificate is required of. Sorted.
+std::vector<Coord> cells_to_certify(const AdaptiveGrid& g, const SampleField& f, const SampleField& a);
+
+} // namespace isodel::octree

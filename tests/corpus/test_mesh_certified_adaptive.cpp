@@ -1,0 +1,59 @@
+// Certified adaptive meshing (MeshOptions::adaptive) on every volume of ../shared/data outside
+// cells/, one file per volume (the .mrc copies hold the same samples as the .vdb), at eps 0.5 and
+// 0.25 voxel: isodel verify passes each mesh against the ORIGINAL volume (topology against an
+// independent computation of Sigma's, Hausdorff, Delaunay), the manifest's topology holds, the
+// certified distance stays within the coarsening's share of eps, and the voxel bound holds in
+// leaves. Label "corpus".
+#include <catch2/catch.hpp>
+
+#include "support/skip.h"
+
+#include "support/mesher_test_support.h"
+
+#include <isodel/volume.h>
+
+using namespace isodel;
+
+TEST_CASE("adaptive meshing of the shared volumes verifies against the original volume", "[corpus][mesher][adaptive]")
+{
+    const auto manifest = testing::read_manifest();
+    if (!manifest.is_array()) {
+        ISODEL_SKIP("../shared/data not found at " << testing::shared_data());
+    }
+    std::size_t meshed = 0;
+    for (const auto& e : manifest) {
+        const std::string file = testing::json_string(e, "file");
+        if (file.rfind("cells/", 0) == 0 || testing::json_has(e, "expect_error")) continue;
+        // One file per volume: skip the dense copies of a .vdb.
+        const std::string stem = file.substr(0, file.find_last_of('.'));
+        if (testing::json_string(e, "format") == "mrc" && testing::manifest_entry(manifest, stem + ".vdb")) continue;
+        if (file == "ct/skull_2.9.inr") continue; // the same samples as ct/skull_2.9.vdb
+        ReadOptions ro;
+        if (testing::json_string(e, "format") == "vdb") ro.grid_name = testing::json_string(e, "grid_name");
+        const auto grid = read_volume(testing::shared_data() + "/" + file, ro).grid;
+        for (double eps : {0.5, 0.25}) {
+            MeshOptions mo;
+            mo.isovalue = testing::json_number(e, "isovalue");
+            mo.inside = testing::inside_of(e);
+            mo.eps_voxels = eps;
+            mo.adaptive = true;
+            testing::MeshAndVerify r;
+            try {
+                r = testing::mesh_and_verify(*grid, mo);
+            } catch (const std::exception& ex) {
+                FAIL_CHECK(file << " eps " << eps << ": " << ex.what());
+                continue;
+            }
+            ++meshed;
+            INFO(file << " eps " << eps << "\n" << r.report.summary());
+            CHECK(r.report.passed());
+            if (testing::json_has(e, "expected_topology") && testing::json_has(e.at("expected_topology"), "genus"))
+                CHECK(r.genera == testing::expected_genera(e));
+            const AdaptiveStats& a = r.mesh.stats.adaptive;
+            CHECK(a.distance_world <= a.eps_coarsening_world);
+            CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
+            CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);
+        }
+    }
+    CHECK(meshed >= 2 * 16);
+}

@@ -1,0 +1,125 @@
+// The coarsening certificate (octree/certified_coarsening.h): each of its conditions refuses
+// the cell that breaks it, and the grid it builds passes it on every changed cell near Sigma.
+#include "octree/certified_coarsening.h"
+#include "octree/balance.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <functional>
+
+namespace {
+
+using isodel::Inside;
+using isodel::octree::CertifiedGrid;
+using isodel::octree::Coord;
+using isodel::octree::SampleField;
+
+// n^3 samples at index 0..n-1 of f (index space), active everywhere, voxel size 1.
+openvdb::FloatGrid::Ptr dense_grid(int n, const std::function<double(double, double, double)>& f, float bg = -1)
+{
+    auto g = openvdb::FloatGrid::create(bg);
+    auto acc = g->getAccessor();
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) acc.setValueOn(Coord(i, j, k), float(f(i, j, k)));
+    return g;
+}
+
+SampleField field_of(const openvdb::FloatGrid::Ptr& g) { return SampleField(g, 0.0, Inside::Above); }
+
+} // namespace
+
+TEST_CASE("certify_cell: a monotone pair passes with delta / g, each broken condition fails", "[octree][adaptive]")
+{
+    const auto fine = dense_grid(12, [](double x, double, double) { return x - 5.5; });
+    const std::array<double, 3> edges{1, 1, 1};
+    const Coord u(5, 5, 5);
+
+    // Shifted by 0.1 along x: distance 0.1 voxel along axis 0.
+    const auto shifted = dense_grid(12, [](double x, double, double) { return x - 5.6; });
+    {
+        const SampleField f = field_of(fine), a = field_of(shifted);
+        const SampleField::Reader fr(f), ar(a);
+        const auto c = isodel::octree::certify_cell(fr, ar, u, edges, 0.25);
+        CHECK(c.ok);
+        CHECK(c.axis == 0);
+        CHECK(c.distance_world == Approx(0.1).epsilon(1e-6));
+        // The same pair over a budget below its distance: refused.
+        CHECK_FALSE(isodel::octree::certify_cell(fr, ar, u, edges, 0.05).ok);
+    }
+    // A coarse function that turns back inside the block (a fold): no monotone axis.
+    const auto folded = dense_grid(12, [](double x, double, double) { return x == 7 ? -1.0 : x - 5.5; });
+    {
+        const SampleField f = field_of(fine), a = field_of(folded);
+        const SampleField::Reader fr(f), ar(a);
+        CHECK_FALSE(isodel::octree::certify_cell(fr, ar, u, edges, 10.0).ok);
+    }
+    // A coarse sample exactly at v*: the mesher's phi != 0 rule would break.
+    const auto on_level = dense_grid(12, [](double x, double, double) { return x == 6 ? 0.0 : x - 5.6; });
+    {
+        const SampleField f = field_of(fine);
+        SampleField a = field_of(on_level);
+        a.set_effective_isovalue(f.effective_isovalue());
+        const SampleField::Reader fr(f), ar(a);
+        CHECK_FALSE(isodel::octree::certify_cell(fr, ar, u, edges, 10.0).ok);
+    }
+    // A shift of more than one voxel leaves the block: refused at any budget.
+    const auto far = dense_grid(12, [](double x, double, double) { return x - 7.0; });
+    {
+        const SampleField f = field_of(fine), a = field_of(far);
+        const SampleField::Reader fr(f), ar(a);
+        CHECK_FALSE(isodel::octree::certify_cell(fr, ar, u, edges, 10.0).ok);
+    }
+}
+
+TEST_CASE("certified_coarsening: a smooth sphere coarsens, every changed cell near Sigma certified", "[octree][adaptive]")
+{
+    const double cx = 23.3, cy = 22.8, cz = 23.1;
+    const auto g = dense_grid(48, [&](double x, double y, double z) {
+        return 18.0 - std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz));
+    });
+    const SampleField fine = field_of(g);
+    isodel::octree::CoarseningBudget budget;
+    budget.distance_world = 0.25;
+    const CertifiedGrid cg = isodel::octree::certified_coarsening(fine, budget);
+    const auto hist = cg.grid.level_histogram();
+    INFO("levels " << hist.size());
+    REQUIRE(hist.size() >= 3); // leaves of level 2 or more
+    CHECK(cg.distance_world <= budget.distance_world);
+    CHECK(cg.distance_world > 0);
+    CHECK(isodel::octree::max_level_difference(cg.grid) <= budget.k);
+
+    // Recheck independently of the repair loop: every node that differs, every cell around it
+    // that Sigma_t can meet, certified within the measured distance.
+    SampleField coarse(cg.resampled, 0.0, Inside::Above);
+    coarse.set_effective_isovalue(fine.effective_isovalue());
+    const auto cells = isodel::octree::cells_to_certify(cg.grid, fine, coarse);
+    CHECK(cells.size() == cg.cells_certified);
+    CHECK(!cells.empty());
+    const SampleField::Reader fr(fine), ar(coarse);
+    double worst = 0;
+    std::size_t failed = 0;
+    for (const Coord& u : cells) {
+        const auto c = isodel::octree::certify_cell(fr, ar, u, {1, 1, 1}, budget.distance_world);
+        failed += !c.ok;
+        worst = std::max(worst, c.distance_world);
+    }
+    CHECK(failed == 0);
+    CHECK(worst == cg.distance_world);
+}
+
+TEST_CASE("certified_coarsening: without a surface to protect, the grid coarsens to its bound", "[octree][adaptive]")
+{
+    // A plane: F is linear, so every coarse interpolant is exact and every cell may coarsen.
+    const auto g = dense_grid(33, [](double x, double y, double z) { return 0.3 * x + 0.2 * y + 0.1 * z - 9.37; });
+    const SampleField fine = field_of(g);
+    isodel::octree::CoarseningBudget budget;
+    budget.distance_world = 0.1;
+    budget.max_level = 3;
+    const CertifiedGrid cg = isodel::octree::certified_coarsening(fine, budget);
+    const auto hist = cg.grid.level_histogram();
+    REQUIRE(hist.size() == 4);
+    CHECK(hist[3] > 0);
+    CHECK(cg.distance_world <= 1e-4); // float rounding of the resampled values only
+}
