@@ -55,8 +55,8 @@ bool within_budget(double delta, double g, double edge, double budget_world, dou
 // lies off Sigma (every node of one strict sign, so P's interpolant is of that sign too). The
 // hanging nodes and the one-cell rim are left to the repair rounds, which check the continuous
 // interpolant itself.
-bool parent_certified(const SampleField::Reader& f, const CellId& p, const std::array<double, 3>& edges,
-                      double budget_world)
+bool parent_certified(const SampleField::Reader& f, const SampleField::Reader& corners, const CellId& p,
+                      const std::array<double, 3>& edges, double budget_world)
 {
     const int s = p.size(), n = s + 1;
     const std::size_t nodes = std::size_t(n) * n * n;
@@ -72,7 +72,7 @@ bool parent_certified(const SampleField::Reader& f, const CellId& p, const std::
             }
     if (!(pos && neg)) return true;
     double c[8];
-    for (int m = 0; m < 8; ++m) c[m] = fine[idx((m & 1) * s, ((m >> 1) & 1) * s, ((m >> 2) & 1) * s)];
+    for (int m = 0; m < 8; ++m) c[m] = corners.phi(p.origin.offsetBy((m & 1) * s, ((m >> 1) & 1) * s, ((m >> 2) & 1) * s));
     const auto& tri = trilinear();
     const double inv = 1.0 / s;
     double delta = 0;
@@ -137,8 +137,8 @@ void check_interrupt(Interrupter* intr, int percent)
 
 // Bottom-up construction: level by level, every parent whose 8 children are leaves, which keeps
 // the grid k-balanced, and which parent_certified accepts.
-void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const CoarseningBudget& budget,
-                       const std::array<double, 3>& edges, Interrupter* intr)
+void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const SampleField& corner_field,
+                       const CoarseningBudget& budget, const std::array<double, 3>& edges, Interrupter* intr)
 {
     for (int l = 1; l <= budget.max_level; ++l) {
         check_interrupt(intr, 40 * l / std::max(1, budget.max_level));
@@ -147,7 +147,7 @@ void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const Coarsenin
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.size(), 64),
                           [&](const tbb::blocked_range<std::size_t>& rg) {
                               AdaptiveGrid::Reader r(g);
-                              SampleField::Reader f(fine);
+                              SampleField::Reader f(fine), corners(corner_field);
                               for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
                                   const CellId& p = cand[i];
                                   if (!g.inside(p)) continue;
@@ -159,7 +159,7 @@ void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const Coarsenin
                                                             l - 1});
                                   if (!children) continue;
                                   if (l > budget.k && touches_finer_than(r, p, l - budget.k)) continue;
-                                  ok[i] = parent_certified(f, p, edges, budget.distance_world);
+                                  ok[i] = parent_certified(f, corners, p, edges, budget.distance_world);
                               }
                           });
         std::size_t merged = 0;
@@ -222,7 +222,10 @@ CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Re
     double delta = 0;
     for (int m = 0; m < 8; ++m) {
         const int i = 1 + (m & 1), j = 1 + ((m >> 1) & 1), k = 1 + ((m >> 2) & 1);
-        if (va[k][j][i] == 0) return cert; // the mesher needs phi != 0 at every sample (sample_field.h)
+        if (va[k][j][i] == 0) { // the mesher needs phi != 0 at every sample (sample_field.h)
+            cert.failure = CertificateFailure::CoarseSampleAtLevel;
+            return cert;
+        }
         delta = std::max(delta, std::abs(vf[k][j][i] - va[k][j][i]));
     }
     // Band cells of the block: the only ones a level set {phi_t = 0} can meet.
@@ -252,14 +255,19 @@ CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Re
                     }
                 }
         double distance = 0;
-        if (!mono.ok || mono.sign == 0 || !within_budget(delta, mono.min_abs, edges[d], budget_world, distance))
+        if (!mono.ok || mono.sign == 0) continue;
+        if (!within_budget(delta, mono.min_abs, edges[d], budget_world, distance)) {
+            if (!cert.ok) cert.failure = CertificateFailure::OverBudget;
             continue;
+        }
+        cert.failure = CertificateFailure::None;
         if (!cert.ok || distance < cert.distance_world) {
             cert.ok = true;
             cert.axis = d;
             cert.distance_world = distance;
         }
     }
+    if (!cert.ok && cert.failure == CertificateFailure::None) cert.failure = CertificateFailure::NoMonotoneAxis;
     return cert;
 }
 
@@ -300,40 +308,59 @@ std::vector<Coord> cells_to_certify(const AdaptiveGrid& g, const SampleField& fi
     return out;
 }
 
-CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudget& budget, Interrupter* intr)
+CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudget& budget, Interrupter* intr,
+                                   openvdb::FloatGrid::ConstPtr corner_samples)
 {
     if (budget.k < 1) throw InvalidInput("adaptive grid: k must be >= 1");
     if (budget.max_level < 0 || budget.max_level > AdaptiveGrid::kMaxLevel)
         throw InvalidInput("adaptive grid: max level must be in [0, 15]");
     const auto edges = voxel_edges(fine);
-    CertifiedGrid out{AdaptiveGrid(fine.grid_ptr(), budget.k), nullptr};
+    if (!corner_samples) corner_samples = fine.grid_ptr();
+    CertifiedGrid out{AdaptiveGrid(corner_samples, budget.k), nullptr};
     AdaptiveGrid& g = out.grid;
-    coarsen_bottom_up(g, fine, budget, edges, intr);
+    if (g.domain() != fine.domain())
+        throw InvalidInput("adaptive grid: the corner samples' domain differs from the input's");
+    SampleField corner_field(corner_samples, fine.isovalue(), fine.inside());
+    corner_field.set_effective_isovalue(fine.effective_isovalue());
+    coarsen_bottom_up(g, fine, corner_field, budget, edges, intr);
 
     // Repair rounds: check the certificate on the continuous interpolant, split around failures.
     const double round_bound = split_potential(g) + 1;
     for (;;) {
         check_interrupt(intr, 50);
-        out.resampled = resample_dense(g);
+        out.resampled = resample_dense(g, fine.grid());
         SampleField coarse(out.resampled, fine.isovalue(), fine.inside());
         coarse.set_effective_isovalue(fine.effective_isovalue());
         const auto cells = cells_to_certify(g, fine, coarse);
-        std::vector<char> failed(cells.size(), 0);
+        std::vector<CertificateFailure> failed(cells.size(), CertificateFailure::None);
         std::vector<double> distance(cells.size(), 0);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 256),
                           [&](const tbb::blocked_range<std::size_t>& rg) {
                               SampleField::Reader f(fine), a(coarse);
                               for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
                                   const CellCertificate c = certify_cell(f, a, cells[i], edges, budget.distance_world);
-                                  failed[i] = !c.ok;
+                                  failed[i] = c.failure;
                                   distance[i] = c.distance_world;
                               }
                           });
         out.cells_certified = cells.size();
         std::vector<CellId> split;
         AdaptiveGrid::Reader r(g);
-        for (std::size_t i = 0; i < cells.size(); ++i)
-            if (failed[i]) leaves_around(r, cells[i], split);
+        std::size_t reasons[4] = {0, 0, 0, 0};
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            ++reasons[int(failed[i])];
+            if (failed[i] != CertificateFailure::None) leaves_around(r, cells[i], split);
+        }
+        if (intr) {
+            const std::string line = "adaptive grid: round " + std::to_string(out.rounds) + ": " +
+                                     std::to_string(cells.size()) + " cells to certify, failed: " +
+                                     std::to_string(reasons[int(CertificateFailure::NoMonotoneAxis)]) +
+                                     " no monotone axis, " + std::to_string(reasons[int(CertificateFailure::OverBudget)]) +
+                                     " over budget, " +
+                                     std::to_string(reasons[int(CertificateFailure::CoarseSampleAtLevel)]) +
+                                     " coarse sample at v*";
+            intr->log(line.c_str());
+        }
         if (split.empty()) {
             out.distance_world = cells.empty() ? 0 : *std::max_element(distance.begin(), distance.end());
             break;

@@ -43,9 +43,18 @@ struct CoarseningBudget {
     int max_level = 5;         ///< coarsest leaf: 2^max_level voxels
 };
 
+/// Why a certificate fails (the first reason found).
+enum class CertificateFailure {
+    None,
+    CoarseSampleAtLevel, ///< a coarse sample equals v*
+    NoMonotoneAxis,      ///< (a): every axis has an edge of the wrong sign or 0 on a band cell
+    OverBudget           ///< (b): a monotone axis, but delta / g over the budget or one voxel
+};
+
 /// One unit cell's certificate (see the file comment).
 struct CellCertificate {
     bool ok = false;
+    CertificateFailure failure = CertificateFailure::None;
     int axis = -1;              ///< the axis d of (a); the lowest axis of the shortest distance
     double distance_world = 0;  ///< delta / g times the voxel edge along d
 };
@@ -60,7 +69,7 @@ CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Re
 
 /// The adaptive grid and what was measured of it.
 struct CertifiedGrid {
-    AdaptiveGrid grid;                     ///< samples: the input (never pruned)
+    AdaptiveGrid grid;                     ///< samples: the corner samples (the input by default)
     openvdb::FloatGrid::Ptr resampled;     ///< the adaptive interpolant on the unit lattice
     double distance_world = 0;             ///< the largest certified distance (<= the budget)
     std::size_t cells_certified = 0;       ///< changed cells that needed a certificate
@@ -73,8 +82,13 @@ struct CertifiedGrid {
 /// every cell that fails, until none does. Each split lowers sum over leaves of (8^level - 1) / 7,
 /// which bounds the repair rounds; the uniform grid (nothing changed) always passes.
 /// \throw Cancelled when \p interrupter asks to stop.
+/// \p corner_samples, when given, is where coarse leaves read their corners (an extended level
+/// set, extended_level_set.h; same active bounding box as the input); the certificate still
+/// compares with \p fine's samples, and nodes outside coarse leaves keep them.
+/// \throw InvalidInput corner_samples with another domain.
 CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudget& budget,
-                                   Interrupter* interrupter = nullptr);
+                                   Interrupter* interrupter = nullptr,
+                                   openvdb::FloatGrid::ConstPtr corner_samples = nullptr);
 
 /// The unit cells of \p g whose corners differ between \p f and \p a and whose 16 corner phi
 /// values are not all of one strict sign: the cells the certificate is required of. Sorted.

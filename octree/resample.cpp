@@ -10,9 +10,11 @@
 
 namespace isodel::octree {
 
-openvdb::FloatGrid::Ptr resample_dense(const AdaptiveGrid& g)
+openvdb::FloatGrid::Ptr resample_dense(const AdaptiveGrid& g) { return resample_dense(g, g.samples()); }
+
+openvdb::FloatGrid::Ptr resample_dense(const AdaptiveGrid& g, const openvdb::FloatGrid& base)
 {
-    auto out = g.samples().deepCopy();
+    auto out = base.deepCopy();
     const float bg = out->background();
     CoordBBox active = g.domain();
     active.expand(-1);
@@ -31,8 +33,11 @@ openvdb::FloatGrid::Ptr resample_dense(const AdaptiveGrid& g)
             }
         }
     if (!active.empty()) { // the extremes fix the active bounding box, hence the domain
-        acc.setValueOn(active.min(), acc.getValue(active.min()));
-        acc.setValueOn(active.max(), acc.getValue(active.max()));
+        // Copies, not references: getValue may return a reference to a tile value, which
+        // setValueOn overwrites when it allocates the leaf.
+        const float lo = acc.getValue(active.min()), hi = acc.getValue(active.max());
+        acc.setValueOn(active.min(), lo);
+        acc.setValueOn(active.max(), hi);
     }
     openvdb::tools::prune(out->tree());
     return out;

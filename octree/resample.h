@@ -15,5 +15,10 @@ namespace isodel::octree {
 /// non-background value become active; the others stay inactive with their value, so the domain
 /// rule of sample_field.h gives g.domain() again and sparse inputs stay sparse.
 openvdb::FloatGrid::Ptr resample_dense(const AdaptiveGrid& g);
+/// The same, starting from a copy of \p base instead of g.samples(): nodes outside every coarse
+/// leaf's closed span keep \p base's values, the rest come from the leaves' interpolant (which
+/// reads its corners from g.samples()). Certified coarsening (certified_coarsening.h) passes the
+/// input as \p base when the corners come from an extended level set (extended_level_set.h).
+openvdb::FloatGrid::Ptr resample_dense(const AdaptiveGrid& g, const openvdb::FloatGrid& base);
 
 } // namespace isodel::octree

@@ -7,6 +7,7 @@
 #include "surface/partitioned_meshing.h"
 #include "octree/adaptive_vdb_format.h"
 #include "octree/certified_coarsening.h"
+#include "octree/extended_level_set.h"
 #include "octree/resample.h"
 #include "octree/sample_field.h"
 
@@ -110,7 +111,10 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     budget.distance_world = options.adaptive_share * eps;
     budget.k = options.adaptive_k;
     budget.max_level = options.adaptive_max_level;
-    octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter);
+    // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
+    // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
+    const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
+    octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
     octree::SampleField coarse(cg.resampled, options.isovalue, inside);
     coarse.set_effective_isovalue(fine.effective_isovalue());
     const double t_grid = since(t0);

@@ -47,3 +47,20 @@ TEST_CASE("the dense trilinear interpolant of the resampled grid equals the adap
         CHECK(worst <= 1e-6);
     }
 }
+
+TEST_CASE("resample_dense: the active box's extreme nodes keep their values when they lie in a tile",
+          "[octree][resample]")
+{
+    // Two voxels in one internal node but different leaves: the box's lowest corner (0, 0, 20)
+    // is an unallocated tile slot of that node. Reading its value by reference and writing it
+    // back allocates the leaf over the reference (the bug this pins: pointer bits as a value).
+    auto grid = openvdb::FloatGrid::create(-1.0f);
+    grid->tree().setValue(openvdb::Coord(0, 20, 20), 2.0f);
+    grid->tree().setValue(openvdb::Coord(20, 0, 24), 3.0f);
+    const AdaptiveGrid g(grid, 1);
+    const auto dense = resample_dense(g);
+    const openvdb::Coord lo(0, 0, 20), hi(20, 20, 24);
+    CHECK(dense->tree().getValue(lo) == -1.0f);
+    CHECK(dense->tree().getValue(hi) == -1.0f);
+    CHECK(dense->evalActiveVoxelBoundingBox() == grid->evalActiveVoxelBoundingBox());
+}
