@@ -273,6 +273,9 @@ CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Re
 
 std::vector<Coord> cells_to_certify(const AdaptiveGrid& g, const SampleField& fine, const SampleField& coarse)
 {
+    // A node differs only inside a coarse leaf's closed span (elsewhere the coarse field keeps the
+    // input's samples), so a changed cell lies in the one-cell shell around some coarse leaf:
+    // each leaf reads the nodes of its shell once and tests the cells there.
     std::vector<CellId> coarse_leaves;
     for (int l = 1; l <= g.max_level(); ++l) {
         const auto ls = g.leaves(l);
@@ -285,21 +288,35 @@ std::vector<Coord> cells_to_certify(const AdaptiveGrid& g, const SampleField& fi
                       [&](const tbb::blocked_range<std::size_t>& rg) {
                           SampleField::Reader f(fine), a(coarse);
                           std::vector<Coord> local;
-                          for (std::size_t i = rg.begin(); i < rg.end(); ++i)
-                              for (auto it = coarse_leaves[i].nodes().begin(); it; ++it) {
-                                  const Coord n = *it;
-                                  if (f.phi(n) == a.phi(n)) continue;
-                                  for (int m = 0; m < 8; ++m) {
-                                      const Coord u = n.offsetBy(-(m & 1), -((m >> 1) & 1), -((m >> 2) & 1));
-                                      if (!cells.isInside(u)) continue;
-                                      bool pos = false, neg = false;
-                                      for (int c = 0; c < 8; ++c) {
-                                          const Coord q = u.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-                                          for (double v : {f.phi(q), a.phi(q)}) (v > 0 ? pos : neg) = true;
+                          std::vector<double> vf, va;
+                          for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
+                              const CellId& leaf = coarse_leaves[i];
+                              const Coord lo = leaf.origin.offsetBy(-1);
+                              const int n = leaf.size() + 3; // nodes per axis: lo .. lo + size + 2
+                              vf.resize(std::size_t(n) * n * n);
+                              va.resize(vf.size());
+                              auto at = [n](int x, int y, int z) { return (std::size_t(z) * n + y) * n + x; };
+                              for (int z = 0; z < n; ++z)
+                                  for (int y = 0; y < n; ++y)
+                                      for (int x = 0; x < n; ++x) {
+                                          const Coord q = lo.offsetBy(x, y, z);
+                                          vf[at(x, y, z)] = f.phi(q);
+                                          va[at(x, y, z)] = a.phi(q);
                                       }
-                                      if (pos && neg) local.push_back(u);
-                                  }
-                              }
+                              for (int z = 0; z + 1 < n; ++z)
+                                  for (int y = 0; y + 1 < n; ++y)
+                                      for (int x = 0; x + 1 < n; ++x) {
+                                          const Coord u = lo.offsetBy(x, y, z);
+                                          if (!cells.isInside(u)) continue;
+                                          bool changed = false, pos = false, neg = false;
+                                          for (int m = 0; m < 8; ++m) {
+                                              const std::size_t q = at(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1));
+                                              changed |= vf[q] != va[q];
+                                              for (double v : {vf[q], va[q]}) (v > 0 ? pos : neg) = true;
+                                          }
+                                          if (changed && pos && neg) local.push_back(u);
+                                      }
+                          }
                           std::lock_guard<std::mutex> lock(mu);
                           out.insert(out.end(), local.begin(), local.end());
                       });
