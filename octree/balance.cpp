@@ -73,6 +73,27 @@ int min_touching_level(const AdaptiveGrid::Reader& r, const CellId& c, int stop_
     return best;
 }
 
+bool may_merge(const AdaptiveGrid::Reader& r, const CellId& p, int k)
+{
+    if (!r.grid().inside(p)) return false;
+    const int h = p.size() / 2;
+    for (int m = 0; m < 8; ++m)
+        if (!r.is_leaf({p.origin.offsetBy((m & 1) * h, ((m >> 1) & 1) * h, ((m >> 2) & 1) * h), p.level - 1}))
+            return false;
+    return !(p.level > k && touches_finer_than(r, p, p.level - k));
+}
+
+std::size_t merge_flagged(AdaptiveGrid& g, const std::vector<CellId>& candidates, const std::vector<char>& flags)
+{
+    std::size_t merged = 0;
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+        if (flags[i]) {
+            g.merge(candidates[i]);
+            ++merged;
+        }
+    return merged;
+}
+
 int max_level_difference(const AdaptiveGrid& g)
 {
     std::atomic<int> worst{0};

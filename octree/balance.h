@@ -15,6 +15,7 @@
 #include "octree/adaptive_grid.h"
 
 #include <cstddef>
+#include <vector>
 
 namespace isodel::octree {
 
@@ -27,6 +28,15 @@ inline bool touches_finer_than(const AdaptiveGrid::Reader& r, const CellId& c, i
 {
     return min_touching_level(r, c, level - 1) < level;
 }
+
+/// True when \p p (level >= 1) may replace its children: its closed span lies in the domain, its
+/// 8 children are leaves, and no leaf touching it is finer than p.level - k (the merge keeps the
+/// grid k-balanced). The structural half of every bottom-up coarsening (decimate.h,
+/// certified_coarsening.h); what the values must satisfy is theirs.
+bool may_merge(const AdaptiveGrid::Reader& r, const CellId& p, int k);
+
+/// Merges the candidates whose flag is set (in order); returns how many.
+std::size_t merge_flagged(AdaptiveGrid& g, const std::vector<CellId>& candidates, const std::vector<char>& flags);
 
 /// Largest level difference between touching leaves (0 for a uniform grid).
 int max_level_difference(const AdaptiveGrid& g);

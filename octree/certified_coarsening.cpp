@@ -150,25 +150,11 @@ void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const SampleFie
                               SampleField::Reader f(fine), corners(corner_field);
                               for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
                                   const CellId& p = cand[i];
-                                  if (!g.inside(p)) continue;
-                                  const int h = p.size() / 2;
-                                  bool children = true;
-                                  for (int m = 0; m < 8 && children; ++m)
-                                      children = r.is_leaf({p.origin.offsetBy((m & 1) * h, ((m >> 1) & 1) * h,
-                                                                              ((m >> 2) & 1) * h),
-                                                            l - 1});
-                                  if (!children) continue;
-                                  if (l > budget.k && touches_finer_than(r, p, l - budget.k)) continue;
+                                  if (!may_merge(r, p, budget.k)) continue;
                                   ok[i] = parent_certified(f, corners, p, edges, budget.distance_world);
                               }
                           });
-        std::size_t merged = 0;
-        for (std::size_t i = 0; i < cand.size(); ++i)
-            if (ok[i]) {
-                g.merge(cand[i]);
-                ++merged;
-            }
-        if (!merged) break;
+        if (!merge_flagged(g, cand, ok)) break;
     }
     g.trim_levels();
     balance(g, budget.k);

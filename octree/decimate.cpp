@@ -232,28 +232,14 @@ DecimateResult decimate(const openvdb::FloatGrid& grid, const DecimateOptions& o
                               auto pacc = prot_l->getConstAccessor();
                               for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
                                   const CellId& p = cand[i];
-                                  if (!ag.inside(p)) continue;
                                   if (pacc.isValueOn(Coord(shift_down(p.origin.x(), l), shift_down(p.origin.y(), l),
                                                            shift_down(p.origin.z(), l))))
                                       continue;
-                                  bool children = true;
-                                  const int h = p.size() / 2;
-                                  for (int m = 0; m < 8 && children; ++m)
-                                      children = r.is_leaf({p.origin.offsetBy((m & 1) * h, ((m >> 1) & 1) * h,
-                                                                              ((m >> 2) & 1) * h),
-                                                            l - 1});
-                                  if (!children) continue;
-                                  if (l > opt.k && touches_finer_than(r, p, l - opt.k)) continue;
+                                  if (!may_merge(r, p, opt.k)) continue;
                                   ok[i] = fits(r, p, T);
                               }
                           });
-        std::size_t merged = 0;
-        for (std::size_t i = 0; i < cand.size(); ++i)
-            if (ok[i]) {
-                ag.merge(cand[i]);
-                ++merged;
-            }
-        if (!merged) break;
+        if (!merge_flagged(ag, cand, ok)) break;
     }
     ag.trim_levels();
     res.balance_splits = balance(ag, opt.k); // merges respect k: expected 0, kept as a guard
