@@ -323,16 +323,20 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
     AdaptiveGrid& g = out.grid;
     if (g.domain() != fine.domain())
         throw InvalidInput("adaptive grid: the corner samples' domain differs from the input's");
-    SampleField corner_field(corner_samples, fine.isovalue(), fine.inside());
-    corner_field.set_effective_isovalue(fine.effective_isovalue());
-    coarsen_bottom_up(g, fine, corner_field, budget, edges, intr);
+    // The corners' field: the input's own unless they come from elsewhere (no second scan).
+    std::optional<SampleField> extended;
+    if (corner_samples != fine.grid_ptr()) {
+        extended.emplace(corner_samples, fine.isovalue(), fine.inside());
+        extended->set_effective_isovalue(fine.effective_isovalue());
+    }
+    coarsen_bottom_up(g, fine, extended ? *extended : fine, budget, edges, intr);
 
     // Repair rounds: check the certificate on the continuous interpolant, split around failures.
     const double round_bound = split_potential(g) + 1;
     for (;;) {
         check_interrupt(intr, 50);
         out.resampled = resample_dense(g, fine.grid());
-        SampleField coarse(out.resampled, fine.isovalue(), fine.inside());
+        SampleField& coarse = out.field.emplace(out.resampled, fine.isovalue(), fine.inside());
         coarse.set_effective_isovalue(fine.effective_isovalue());
         const auto cells = cells_to_certify(g, fine, coarse);
         std::vector<CertificateFailure> failed(cells.size(), CertificateFailure::None);

@@ -32,6 +32,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace isodel::octree {
@@ -71,6 +72,8 @@ CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Re
 struct CertifiedGrid {
     AdaptiveGrid grid;                     ///< samples: the corner samples (the input by default)
     openvdb::FloatGrid::Ptr resampled;     ///< the adaptive interpolant on the unit lattice
+    /// resampled read as phi at the input's level v*: the field the mesher meshes.
+    std::optional<SampleField> field;
     double distance_world = 0;             ///< the largest certified distance (<= the budget)
     std::size_t cells_certified = 0;       ///< changed cells that needed a certificate
     std::size_t rounds = 0, splits = 0;    ///< repair rounds and leaves split by them

@@ -115,8 +115,7 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
     const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
     octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
-    octree::SampleField coarse(cg.resampled, options.isovalue, inside);
-    coarse.set_effective_isovalue(fine.effective_isovalue());
+    const octree::SampleField& coarse = *cg.field; // the coarse field, at the input's v*
     const double t_grid = since(t0);
 
     MeshOptions mo = options;
