@@ -1,7 +1,10 @@
 #include "octree/edge_crossings.h"
 
+#include "octree/parallel_mask.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -180,25 +183,24 @@ EdgeCrossings edge_crossings(const SampleField& field)
     for (auto& v : found) out.points.insert(out.points.end(), v.begin(), v.end());
     // The order of a scan of the whole box, z slowest, then y, x, axis: E's ids follow it, and
     // every later decision is keyed by ids, so the mesh is the same whatever blocks were read.
-    std::sort(out.points.begin(), out.points.end(), [](const EdgePoint& p, const EdgePoint& q) {
+    // Keys are unique (one point per edge), so the parallel sort's result is the sorted order.
+    tbb::parallel_sort(out.points.begin(), out.points.end(), [](const EdgePoint& p, const EdgePoint& q) {
         const std::array<int, 4> a{{p.lower.z(), p.lower.y(), p.lower.x(), p.axis}};
         const std::array<int, 4> b{{q.lower.z(), q.lower.y(), q.lower.x(), q.axis}};
         return a < b;
     });
-
-    out.crossed_cells = openvdb::MaskGrid::create();
-    auto cells = out.crossed_cells->getAccessor();
-    for (const EdgePoint& p : out.points) {
+    out.crossed_cells = parallel_mask(out.points.size(), [&](std::size_t i, auto& cells) {
+        const EdgePoint& p = out.points[i];
         // The four cells around the edge.
         const int b = (p.axis + 1) % 3, c = (p.axis + 2) % 3;
-        for (int i = 0; i < 2; ++i)
+        for (int k = 0; k < 2; ++k)
             for (int j = 0; j < 2; ++j) {
                 Coord cell = p.lower;
-                cell[b] -= i;
+                cell[b] -= k;
                 cell[c] -= j;
                 cells.setValueOn(cell);
             }
-    }
+    });
     return out;
 }
 

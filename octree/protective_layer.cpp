@@ -1,5 +1,7 @@
 #include "octree/protective_layer.h"
 
+#include "octree/parallel_mask.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -69,16 +71,18 @@ ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGr
     else
         out.bound_e = out.bound_n;
 
-    openvdb::MaskGrid mask;
-    auto acc = mask.getAccessor();
-    for (auto it = crossed_cells.cbeginValueOn(); it; ++it) {
-        const Coord c = it.getCoord();
+    // G: every grid point within r of a crossed cell's corners, marked in parallel over the
+    // crossed cells and listed in the mask's own order (parallel_mask.h).
+    std::vector<Coord> cells;
+    cells.reserve(crossed_cells.activeVoxelCount());
+    for (auto it = crossed_cells.cbeginValueOn(); it; ++it) cells.push_back(it.getCoord());
+    const auto mask = parallel_mask(cells.size(), [&](std::size_t i, auto& acc) {
+        const Coord c = cells[i];
         for (int z = c.z() - r[2]; z <= c.z() + 1 + r[2]; ++z)
             for (int y = c.y() - r[1]; y <= c.y() + 1 + r[1]; ++y)
                 for (int x = c.x() - r[0]; x <= c.x() + 1 + r[0]; ++x) acc.setValueOn(Coord(x, y, z));
-    }
-    out.points.reserve(mask.activeVoxelCount());
-    for (auto it = mask.cbeginValueOn(); it; ++it) out.points.push_back(it.getCoord());
+    });
+    out.points = coords_of(mask->tree());
     return out;
 }
 
