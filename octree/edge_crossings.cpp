@@ -162,7 +162,7 @@ void scan_block(const SampleField::Reader& reader, const Coord& b, const CoordBB
 
 } // namespace
 
-EdgeCrossings edge_crossings(const SampleField& field)
+EdgeCrossings edge_crossings(const SampleField& field, const BlockProgress& progress)
 {
     // Every edge with an end in the domain; edges wholly outside it are never crossed. Lower
     // ends s run over the domain grown by one, less its last layer on each axis.
@@ -171,11 +171,18 @@ EdgeCrossings edge_crossings(const SampleField& field)
     lower_ends.max() -= Coord(1);
     const std::vector<Coord> blocks = candidate_blocks(field, lower_ends);
 
+    // In batches, so that progress is reported and cancellation heard on the calling thread;
+    // found[i] belongs to block i whatever thread scans it.
     std::vector<std::vector<EdgePoint>> found(blocks.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 16), [&](const auto& r) {
-        const SampleField::Reader reader(field);
-        for (std::size_t i = r.begin(); i != r.end(); ++i) scan_block(reader, blocks[i], lower_ends, found[i]);
-    });
+    const std::size_t batch = std::max<std::size_t>(4096, blocks.size() / 64);
+    for (std::size_t first = 0; first < blocks.size(); first += batch) {
+        const std::size_t last = std::min(blocks.size(), first + batch);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 16), [&](const auto& r) {
+            const SampleField::Reader reader(field);
+            for (std::size_t i = r.begin(); i != r.end(); ++i) scan_block(reader, blocks[i], lower_ends, found[i]);
+        });
+        if (progress) progress(last, blocks.size());
+    }
     EdgeCrossings out;
     std::size_t n = 0;
     for (const auto& v : found) n += v.size();

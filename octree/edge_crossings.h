@@ -8,6 +8,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <functional>
 #include <vector>
 
 namespace isodel::octree {
@@ -26,8 +27,12 @@ struct EdgeCrossings {
     openvdb::MaskGrid::Ptr crossed_cells;
 };
 
+/// Called on the calling thread between batches of blocks: \p done of \p total 8^3 blocks
+/// (leaf nodes, and leaf-sized blocks at tile and domain faces) scanned. It may throw to cancel.
+using BlockProgress = std::function<void(std::size_t done, std::size_t total)>;
+
 /// All crossings on the edges of the sample lattice (domain grown by the outside ring), in
-/// OpenVDB's deterministic iteration order.
-EdgeCrossings edge_crossings(const SampleField& field);
+/// the order of a whole-box scan (z, y, x, axis).
+EdgeCrossings edge_crossings(const SampleField& field, const BlockProgress& progress = {});
 
 } // namespace isodel::octree

@@ -19,12 +19,19 @@ namespace isodel::octree {
 template <typename Mark>
 openvdb::MaskGrid::Ptr parallel_mask(std::size_t n, const Mark& mark)
 {
+    auto out = openvdb::MaskGrid::create();
+    // Each tree costs its internal nodes' tables (~0.3 MB zeroed) however few voxels it holds:
+    // few items are marked on one thread, into the result directly.
+    if (n < 4096) {
+        auto acc = out->getAccessor();
+        for (std::size_t i = 0; i < n; ++i) mark(i, acc);
+        return out;
+    }
     tbb::enumerable_thread_specific<openvdb::MaskTree> local;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
         openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(local.local());
         for (std::size_t i = r.begin(); i != r.end(); ++i) mark(i, acc);
     });
-    auto out = openvdb::MaskGrid::create();
     for (auto& t : local) out->tree().topologyUnion(t);
     return out;
 }

@@ -7,6 +7,8 @@
 /// its trace lines (one per refinement round and check) go to log(), which ignores them unless
 /// the caller overrides it (the CLI's --trace writes them to stderr).
 
+#include <cstdint>
+
 namespace isodel {
 
 class Interrupter {
@@ -19,6 +21,16 @@ public:
     /// Progress of the current stage in percent (0..100), or -1 when unknown.
     /// \return true to request cancellation.
     virtual bool wasInterrupted(int percent = -1) { (void)percent; return false; }
+    /// Progress of the current stage counted in the units its work is proportional to: \p done
+    /// of \p total \p unit ("leaves" before the Delaunay triangulation: OpenVDB leaf nodes and
+    /// the leaf-sized blocks at tile faces, never the bounding box's voxels). The default passes
+    /// the percentage to wasInterrupted(int).
+    /// \return true to request cancellation.
+    virtual bool progress(std::uint64_t done, std::uint64_t total, const char* unit)
+    {
+        (void)unit;
+        return wasInterrupted(total > 0 ? int(100 * done / total) : -1);
+    }
     /// A trace line (no trailing newline), from the thread that called the library or from a
     /// worker thread: an override that writes somewhere shared must serialise its writes.
     virtual void log(const char* message) { (void)message; }
@@ -37,6 +49,8 @@ public:
     InterruptScope& operator=(const InterruptScope&) = delete;
     /// Throws isodel::Cancelled if the interrupter requests it.
     void check(int percent = -1) const;
+    /// The same, with progress counted in units (Interrupter::progress).
+    void check(std::uint64_t done, std::uint64_t total, const char* unit) const;
 
 private:
     Interrupter* intr_;

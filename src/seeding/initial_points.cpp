@@ -25,8 +25,9 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
     InitialPoints out;
     const octree::FaceSlabs& slabs = field.face_slabs();
     InterruptScope scope(interrupter, "points");
-    octree::EdgeCrossings e = octree::edge_crossings(field);
-    scope.check(50);
+    // Progress in leaves: the work before Del(E u G) follows the active leaves, not the box.
+    octree::EdgeCrossings e = octree::edge_crossings(
+        field, [&](std::size_t done, std::size_t total) { scope.check(done, total, "leaves"); });
     if (adaptive) {
         // E on leaf edges only; G from the leaves (adaptive_points.h).
         e.points.erase(std::remove_if(e.points.begin(), e.points.end(),

@@ -79,6 +79,9 @@ TEST_CASE("parallel masks list the serial mask's voxels in its order", "[octree]
         REQUIRE(serial.size() > 10000);
         CHECK(parallel_coords(cells, 1) == serial);
         CHECK(parallel_coords(cells, 2) == serial);
+        // Few items take the one-thread path (no per-thread trees): the same voxels, same order.
+        const std::vector<Coord> few(cells.begin(), cells.begin() + 1000);
+        CHECK(parallel_coords(few, 2) == serial_coords(few));
     }
 }
 

@@ -18,9 +18,15 @@
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
+#include <isodel/errors.h>
+#include <isodel/interrupt.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 using namespace isodel;
 
@@ -136,4 +142,49 @@ TEST_CASE("sparse volumes: the inside reaching the faces of the active box", "[s
     INFO(r.report.summary());
     CHECK(r.report.passed());
     CHECK(r.genera == std::vector<int>{0});
+}
+
+namespace {
+
+/// Records the counted progress of the "points" stage; cancels at the first count if asked.
+struct LeafCounter final : Interrupter {
+    bool cancel = false;
+    std::string stage;
+    std::vector<std::uint64_t> done;
+    std::uint64_t total = 0;
+    std::string unit;
+    void start(const char* name) override { stage = name; }
+    bool progress(std::uint64_t d, std::uint64_t t, const char* u) override
+    {
+        if (stage != "points") return false;
+        done.push_back(d);
+        total = t;
+        unit = u;
+        return cancel;
+    }
+};
+
+} // namespace
+
+TEST_CASE("sparse volumes: the points stage counts leaves, not the box, and hears a cancel", "[surface][sparse]")
+{
+    const auto grid = sphere_pair(1536.f);
+    LeafCounter counter;
+    const MeshResult r = mesh_isosurface(*grid, options(0.0, Inside::Below), &counter);
+    REQUIRE(r.surface.triangles.size() > 0);
+    const std::uint64_t leaves = grid->tree().leafCount();
+    CHECK(counter.unit == "leaves");
+    REQUIRE_FALSE(counter.done.empty());
+    CHECK(std::is_sorted(counter.done.begin(), counter.done.end()));
+    CHECK(counter.done.back() == counter.total);
+    // Every leaf node is a block; the other blocks sit at tile and domain faces, a handful per
+    // leaf. The box holds 1.6e5 times as many leaf-sized blocks as the spheres have leaves.
+    CHECK(counter.total >= leaves);
+    CHECK(counter.total <= 4 * leaves);
+    CHECK(grid->evalActiveVoxelBoundingBox().volume() / 512 > 1000 * counter.total);
+
+    LeafCounter cancelling;
+    cancelling.cancel = true;
+    CHECK_THROWS_AS(mesh_isosurface(*grid, options(0.0, Inside::Below), &cancelling), isodel::Cancelled);
+    CHECK(cancelling.done.size() == 1);
 }

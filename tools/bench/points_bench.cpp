@@ -9,7 +9,10 @@
 //   points  MeshStats::seconds["points"] of a whole run at --threads (E, G, tubes, shoulders)
 //   total   that run's total; share = points / total
 //
-//   points_bench [--data DIR]... [--reps 3] [--eps-voxels 0.5] [--threads 2] [--only SUBSTRING]
+//   points_bench [--data DIR]... [--reps 3] [--whole-reps 1] [--eps-voxels 0.5] [--threads 2]
+//                [--only SUBSTRING]
+// The stages run --reps times, the whole run --whole-reps times (its points and total are
+// medians over those).
 #include "support/bench_support.h"
 
 #include "octree/edge_crossings.h"
@@ -103,13 +106,14 @@ std::vector<Entry> entries(const std::string& dir)
 int main(int argc, char** argv)
 {
     std::vector<std::string> dirs;
-    int reps = 3, threads = 2;
+    int reps = 3, whole_reps = 1, threads = 2;
     double eps_voxels = 0.5;
     std::string only;
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i], v = argv[i + 1];
         if (a == "--data") dirs.push_back(v);
         else if (a == "--reps") reps = std::max(1, std::stoi(v));
+        else if (a == "--whole-reps") whole_reps = std::max(1, std::stoi(v));
         else if (a == "--threads") threads = std::max(1, std::stoi(v));
         else if (a == "--eps-voxels") eps_voxels = std::stod(v);
         else if (a == "--only") only = v;
@@ -136,9 +140,10 @@ int main(int argc, char** argv)
                                                                 : vol.default_inside;
             std::vector<Stages> one, two;
             std::vector<double> points, total;
-            for (int r = 0; r < reps; ++r) { // interleaved: 1 thread, 2 threads, whole run
+            for (int r = 0; r < reps; ++r) { // interleaved: 1 thread, 2 threads (, whole run)
                 one.push_back(run_stages(vol.grid, e.iso, inside, 1));
                 two.push_back(run_stages(vol.grid, e.iso, inside, threads));
+                if (r >= whole_reps) continue;
                 isodel::MeshOptions mo;
                 mo.isovalue = e.iso;
                 mo.inside = inside;

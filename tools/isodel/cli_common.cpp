@@ -31,11 +31,13 @@ struct ProgressReporter::Impl {
     bool printed = false;
     struct sigaction old_action {};
 
-    void print(int percent)
+    /// "stage 40% 1.2s", or with a count "points 1200/3000 leaves 1.2s".
+    void print(int percent, const std::string& count = {})
     {
         const double secs =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
-        if (percent >= 0) std::fprintf(stderr, "\r%s %d%% %.1fs\033[K", stage.c_str(), percent, secs);
+        if (!count.empty()) std::fprintf(stderr, "\r%s %s %.1fs\033[K", stage.c_str(), count.c_str(), secs);
+        else if (percent >= 0) std::fprintf(stderr, "\r%s %d%% %.1fs\033[K", stage.c_str(), percent, secs);
         else std::fprintf(stderr, "\r%s %.1fs\033[K", stage.c_str(), secs);
         std::fflush(stderr);
         printed = true;
@@ -84,6 +86,14 @@ bool ProgressReporter::wasInterrupted(int percent)
     if (impl_->show &&
         std::chrono::steady_clock::now() - impl_->last_print > std::chrono::milliseconds(100))
         impl_->print(percent);
+    return g_sigint.load();
+}
+
+bool ProgressReporter::progress(std::uint64_t done, std::uint64_t total, const char* unit)
+{
+    if (impl_->show &&
+        std::chrono::steady_clock::now() - impl_->last_print > std::chrono::milliseconds(100))
+        impl_->print(-1, std::to_string(done) + "/" + std::to_string(total) + " " + (unit ? unit : ""));
     return g_sigint.load();
 }
 

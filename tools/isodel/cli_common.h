@@ -26,6 +26,7 @@ public:
     void start(const char* name) override;
     void end() override;
     bool wasInterrupted(int percent = -1) override;
+    bool progress(std::uint64_t done, std::uint64_t total, const char* unit) override;
     void log(const char* message) override;
 
 private:
