@@ -31,6 +31,7 @@
 #include <array>
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +88,8 @@ struct MeshOptions {
     int adaptive_max_level = 5;  ///< coarsest leaf 2^level voxels, in [0, 15]
 };
 
+struct AdaptiveVolume; // include/isodel/adaptive.h
+
 struct MeshResult {
     SurfaceMesh surface;
     /// With MeshOptions::tets: the tetrahedra of the chosen region(s). Its first
@@ -94,6 +97,11 @@ struct MeshResult {
     /// tets.triangles == surface.triangles, so the inside region's boundary is M index for index.
     TetMesh tets;
     MeshStats stats;
+    /// With MeshOptions::adaptive: the certified octree the surface was meshed on (corner
+    /// samples, one mask per level), so its interpolant can be saved (save_adaptive) and checked
+    /// by `isodel verify` like a decimated file. The samples share the input's tree (or hold the
+    /// extended distances of a narrow-band level set). Null otherwise.
+    std::shared_ptr<const AdaptiveVolume> adaptive_grid;
 };
 
 /// Checks \p options before any work: eps (or eps_voxels) positive and finite, threads,
@@ -113,7 +121,6 @@ std::string to_json(const MeshStats& stats);
 MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options,
                            Interrupter* interrupter = nullptr);
 
-struct AdaptiveVolume; // include/isodel/adaptive.h
 
 /// Meshes {F = options.isovalue} of the adaptive interpolant F of \p volume (Property IV; e.g.
 /// from `isodel decimate`). E, G and the tetrahedra's G' follow the leaves, so coarse regions

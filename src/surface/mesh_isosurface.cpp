@@ -133,6 +133,14 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     a.repair_rounds = cg.rounds;
     a.repair_splits = cg.splits;
     r.stats.eps_world = eps;
+    auto saved = std::make_shared<AdaptiveVolume>();
+    // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive.
+    saved->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(cg.grid.samples_ptr())->copy();
+    saved->levels = cg.grid.masks();
+    saved->domain = cg.grid.domain();
+    saved->k = cg.grid.k();
+    saved->source = "isodel mesh --adaptive";
+    r.adaptive_grid = std::move(saved);
     r.stats.seconds["adaptive_grid"] = t_grid;
     r.stats.seconds["total"] += t_grid;
     if (options.certify) certify_against(grid, inside, eps, options, r);

@@ -91,12 +91,47 @@ TEST_CASE("mesh --adaptive: an adaptive input and --blocks are refused with one 
     const std::string adaptive = tmp / "dec.vdb", out = tmp / "m.ply";
     REQUIRE(run_isodel("decimate " + shell_quote(torus) + " -o " + shell_quote(adaptive) + " --k 1 --tolerance 0.005",
                        tmp.path()).status == 0);
-    for (const std::string& args : {shell_quote(adaptive) + " --adaptive", shell_quote(torus) + " --adaptive --blocks 16"}) {
+    for (const std::string& args : {shell_quote(adaptive) + " --adaptive", shell_quote(torus) + " --adaptive --blocks 16",
+                                    shell_quote(torus) + " --adaptive-grid " + shell_quote(tmp / "g.vdb")}) {
         const RunResult r = run_isodel("mesh " + args + " --iso 0 --quiet -o " + shell_quote(out), tmp.path());
         INFO(args << ": " << r.err);
         CHECK(r.status != 0);
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
         CHECK(r.err.find("adaptive") != std::string::npos);
         CHECK_FALSE(std::filesystem::exists(out));
+        CHECK_FALSE(std::filesystem::exists(tmp / "g.vdb"));
+    }
+}
+
+TEST_CASE("mesh --adaptive --adaptive-grid: the octree meshed is written and the surface verifies against "
+          "its interpolant as well as against the input",
+          "[cli][adaptive]")
+{
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string out = tmp / "m.ply", grid = tmp / "octree.vdb", stats = tmp / "m.json";
+    const RunResult r = run_isodel("mesh " + shell_quote(torus) + " --iso 0 --adaptive --quiet -o " + shell_quote(out) +
+                                       " --adaptive-grid " + shell_quote(grid) + " --stats " + shell_quote(stats),
+                                   tmp.path());
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    // The file holds the octree the run reports: as many levels, as many leaves per level.
+    const RunResult info = run_isodel("info " + shell_quote(grid) + " --json", tmp.path());
+    REQUIRE(info.status == 0);
+    const Json i = Json::parse(info.out), s = read_json_file(stats);
+    const Json& per_level = s.at("adaptive").at("leaves_per_level");
+    REQUIRE(per_level.size() >= 2);
+    INFO(info.out);
+    CHECK(i.at("adaptive").at("levels").get<std::size_t>() == per_level.size());
+    CHECK(i.at("adaptive").at("leaves_per_level") == per_level);
+    // Against the interpolant the mesher saw (within the meshing share, so within eps), and
+    // against the input.
+    for (const std::string& volume : {grid, torus}) {
+        const RunResult v = run_isodel("verify " + shell_quote(volume) + " --iso 0 --eps-voxels 0.5 --mesh " +
+                                           shell_quote(out),
+                                       tmp.path());
+        INFO(volume << ": " << v.out << v.err);
+        CHECK(v.status == 0);
+        CHECK(v.out.find("VERIFIED") != std::string::npos);
     }
 }

@@ -6,8 +6,9 @@
 //    triangles. The points' ids, which order every later decision, follow OpenVDB's tree order
 //    for G, so the second sphere moves by whole 128^3 internal nodes: the order within each
 //    sphere, and so each choice between symmetric candidates, is then the same. (The triangles
-//    themselves may differ where four vertices are cospherical: there the two diagonals are
-//    both Delaunay, and which one the triangulation keeps depends on its insertion order.)
+//    themselves may differ where four vertices are nearly cospherical: the exact predicates
+//    see world coordinates rounded differently at the two places, lower + t in floating point,
+//    so a diagonal can flip; the test bounds those at 1% of the triangles.)
 //  - a fog volume whose core is a tile, with Sigma between the tile and the voxels around it;
 //  - data whose inside reaches the faces of its active box (Sigma closed along the box);
 //  - the same mesh at 1 and 2 threads.
@@ -93,6 +94,14 @@ TEST_CASE("sparse volumes: a far-apart pair meshes as the compact pair, translat
     const Canonical a = canonical(near.mesh.surface, 128.0, 128.0), b = canonical(far.mesh.surface, 800.0, 1536.0);
     CHECK(a.vertices == b.vertices);
     CHECK(a.triangles.size() == b.triangles.size());
+    std::vector<std::array<std::array<long long, 3>, 3>> only_a;
+    std::set_difference(a.triangles.begin(), a.triangles.end(), b.triangles.begin(), b.triangles.end(),
+                        std::back_inserter(only_a));
+    // Where four vertices are (nearly) cospherical the exact predicates decide on coordinates
+    // whose last bits differ: an E point is lower + t, rounded once at 64 and once at 1600.
+    // Measured: 18 of 4032 triangles; more than 1% would be a real difference.
+    INFO("triangles differing: " << only_a.size() << " of " << a.triangles.size());
+    CHECK(only_a.size() * 100 <= a.triangles.size());
 }
 
 TEST_CASE("sparse volumes: the same mesh at 1 and 2 threads", "[surface][sparse]")

@@ -2,6 +2,8 @@
 // voxel size, value range), as text or as one JSON object (--json) for scripts and tests.
 #include "cli_common.h"
 
+#include <isodel/adaptive.h>
+
 #include <nlohmann/json.hpp>
 
 #include <iostream>
@@ -89,6 +91,9 @@ void print_json(const Volume& vol, const Info& i)
         m.push_back(Json::array({i.index_to_world(r, 0), i.index_to_world(r, 1), i.index_to_world(r, 2),
                                  i.index_to_world(r, 3)}));
     o["index_to_world"] = std::move(m);
+    if (const auto a = adaptive_info(vol.path)) // isodel decimate or mesh --adaptive-grid
+        o["adaptive"] = {{"levels", a->levels}, {"k", a->k}, {"leaves_per_level", a->histogram},
+                         {"source", a->source}};
     // A path need not be UTF-8: invalid bytes are written as U+FFFD rather than failing.
     std::cout << o.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
 }
@@ -110,6 +115,11 @@ void print_text(const Volume& vol, const Info& i)
       << "active voxels: " << i.active << " in " << i.leaves << " leaf nodes of 8^3 and " << i.active_tiles
       << " active tiles (" << i.tiles << " tiles in all)\n"
       << "memory:        " << i.memory << " bytes (" << double(i.memory) / (1024.0 * 1024.0) << " MiB)\n";
+    if (const auto a = adaptive_info(vol.path)) {
+        o << "adaptive:      " << a->levels << " levels, k " << a->k << ", leaves per level";
+        for (const auto n : a->histogram) o << ' ' << n;
+        o << " (" << a->source << ")\n";
+    }
     std::cout << o.str();
 }
 

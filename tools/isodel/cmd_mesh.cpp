@@ -30,6 +30,7 @@ struct MeshCliOptions {
     bool adaptive = false;
     double adaptive_share = 0.5;
     int adaptive_k = 1, adaptive_max_level = 5;
+    std::string adaptive_grid;
 };
 } // namespace
 
@@ -79,6 +80,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     cmd->add_option("--adaptive-max-level", o->adaptive_max_level,
                     "--adaptive: coarsest cell, 2^level voxels (default 5)")
         ->check(CLI::Range(0, 15));
+    cmd->add_option("--adaptive-grid", o->adaptive_grid,
+                    "--adaptive: also write the certified octree (.vdb, as isodel decimate writes), so that "
+                    "isodel verify can check the surface against its interpolant too");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->add_flag("--trace", o->trace, "Print the mesher's trace on stderr: one line per refinement round and check");
     cmd->callback([o, &exit_code] {
@@ -109,6 +113,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.adaptive_k = o->adaptive_k;
         mo.adaptive_max_level = o->adaptive_max_level;
         check_mesh_options(mo); // before any work
+        if (!o->adaptive_grid.empty() && !mo.adaptive)
+            throw InvalidInput("--adaptive-grid " + o->adaptive_grid + ": needs --adaptive (the octree it writes is "
+                               "the one --adaptive builds)");
 
         ProgressReporter progress(o->quiet, o->trace);
         const auto t0 = std::chrono::steady_clock::now();
@@ -135,6 +142,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         progress.start("write");
         write_surface_mesh(o->out, res.surface);
         if (!o->tets.empty()) write_tet_mesh(o->tets, res.tets);
+        if (!o->adaptive_grid.empty() && res.adaptive_grid) save_adaptive(o->adaptive_grid, *res.adaptive_grid);
         progress.end();
         res.stats.seconds["read"] = t_read;
         res.stats.seconds["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
