@@ -1,6 +1,7 @@
 #include "octree/edge_crossings.h"
 
-#include "octree/parallel_mask.h"
+#include "octree/stored_tiles.h"
+#include "octree/voxel_set.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -106,15 +107,11 @@ std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& l
     const bool background_inside = field.phi_of_value(tree.background()) > 0;
     const SampleField::Reader reader(field);
     std::vector<CoordBBox> other_side_tiles;
-    auto tile = tree.cbeginValueAll();
-    tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
-    for (; tile; ++tile) {
-        if ((field.phi_of_value(*tile) > 0) == background_inside) continue;
-        CoordBBox b;
-        tile.getBoundingBox(b);
+    for_each_stored_tile(tree, [&](const CoordBBox& b, float value, bool) {
+        if ((field.phi_of_value(value) > 0) == background_inside) return;
         out.add_tile_faces(b, !background_inside, field, reader);
         other_side_tiles.push_back(b);
-    }
+    });
     // (c) the faces of the domain and of the active box, where the sample inside may be inside:
     // everywhere if the background is, else in leaves (a) and in the tiles of (b).
     for (const CoordBBox& region : {field.domain(), field.lattice()})
@@ -196,7 +193,7 @@ EdgeCrossings edge_crossings(const SampleField& field, const BlockProgress& prog
         const std::array<int, 4> b{{q.lower.z(), q.lower.y(), q.lower.x(), q.axis}};
         return a < b;
     });
-    out.crossed_cells = parallel_mask(out.points.size(), [&](std::size_t i, auto& cells) {
+    out.crossed_cells = voxel_set(out.points.size(), 4, [&](std::size_t i, auto& cells) {
         const EdgePoint& p = out.points[i];
         // The four cells around the edge.
         const int b = (p.axis + 1) % 3, c = (p.axis + 2) % 3;
@@ -207,7 +204,7 @@ EdgeCrossings edge_crossings(const SampleField& field, const BlockProgress& prog
                 cell[c] -= j;
                 cells.setValueOn(cell);
             }
-    });
+    }).coords;
     return out;
 }
 

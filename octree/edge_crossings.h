@@ -23,8 +23,9 @@ struct EdgeCrossings {
     std::vector<EdgePoint> points;
     /// Cells (by lower corner) that Sigma passes through: the cells incident to a crossed edge.
     /// A trilinear cell whose corners all have one sign holds no part of Sigma (a multilinear
-    /// function attains its extrema at the vertices), so these are all of them.
-    openvdb::MaskGrid::Ptr crossed_cells;
+    /// function attains its extrema at the vertices), so these are all of them. Each once, in
+    /// the iteration order of a MaskTree holding them (voxel_set.h).
+    std::vector<Coord> crossed_cells;
 };
 
 /// Called on the calling thread between batches of blocks: \p done of \p total 8^3 blocks

@@ -1,6 +1,6 @@
 #include "octree/protective_layer.h"
 
-#include "octree/parallel_mask.h"
+#include "octree/voxel_set.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,7 +53,7 @@ bool orthogonal_lattice(const SampleField& field)
     return true;
 }
 
-ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGrid& crossed_cells)
+ProtectiveLayer protective_layer(const SampleField& field, const std::vector<Coord>& crossed_cells)
 {
     ProtectiveLayer out;
     out.radius = layer_radius(field);
@@ -72,17 +72,16 @@ ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGr
         out.bound_e = out.bound_n;
 
     // G: every grid point within r of a crossed cell's corners, marked in parallel over the
-    // crossed cells and listed in the mask's own order (parallel_mask.h).
-    std::vector<Coord> cells;
-    cells.reserve(crossed_cells.activeVoxelCount());
-    for (auto it = crossed_cells.cbeginValueOn(); it; ++it) cells.push_back(it.getCoord());
-    const auto mask = parallel_mask(cells.size(), [&](std::size_t i, auto& acc) {
-        const Coord c = cells[i];
+    // crossed cells and listed in a mask's order (voxel_set.h).
+    const std::size_t block = std::size_t(2 * r[0] + 2) * (2 * r[1] + 2) * (2 * r[2] + 2);
+    VoxelSet g = voxel_set(crossed_cells.size(), block, [&](std::size_t i, auto& acc) {
+        const Coord c = crossed_cells[i];
         for (int z = c.z() - r[2]; z <= c.z() + 1 + r[2]; ++z)
             for (int y = c.y() - r[1]; y <= c.y() + 1 + r[1]; ++y)
                 for (int x = c.x() - r[0]; x <= c.x() + 1 + r[0]; ++x) acc.setValueOn(Coord(x, y, z));
     });
-    out.points = coords_of(mask->tree());
+    out.points = std::move(g.coords);
+    out.mask = std::move(g.mask);
     return out;
 }
 

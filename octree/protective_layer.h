@@ -32,6 +32,9 @@ struct ProtectiveLayer {
     int bound_e = 4;                    ///< cells a Voronoi cell of an E point may meet (bound_n if sheared)
     int bound_n = 27;                   ///< ... of an N point
     std::vector<Coord> points;          ///< G, in deterministic order
+    /// G as a mask when it was built as one (many crossed cells), else null: the mesher's set of
+    /// grid points starts from it instead of building the same tree again.
+    openvdb::MaskGrid::Ptr mask;
 };
 
 /// Per-axis layer radius for the transform of \p field (1 on cubic and mildly anisotropic voxels).
@@ -41,7 +44,7 @@ std::array<int, 3> layer_radius(const SampleField& field);
 /// trap for E points needs it; sheared maps get the N-point bound for E points too).
 bool orthogonal_lattice(const SampleField& field);
 
-/// G around \p crossed_cells.
-ProtectiveLayer protective_layer(const SampleField& field, const openvdb::MaskGrid& crossed_cells);
+/// G around \p crossed_cells (lower corners; an empty list gives the radius and bounds only).
+ProtectiveLayer protective_layer(const SampleField& field, const std::vector<Coord>& crossed_cells);
 
 } // namespace isodel::octree

@@ -1,6 +1,7 @@
 #include "octree/sample_field.h"
 
 #include "octree/critical_values.h"
+#include "octree/stored_tiles.h"
 
 #include <isodel/errors.h>
 
@@ -67,17 +68,17 @@ void for_each_leaf(const Tree& tree, ValueScan& scan, const Body& body)
 }
 
 /// Every stored value of the domain: active voxels and tiles, and inactive ones inside the
-/// lattice (anywhere when the ring reads the background). Tiles are read once, never expanded.
+/// lattice (anywhere when the ring reads the background). Tiles are read once, never expanded;
+/// inactive tiles of the background value are skipped (stored_tiles.h), since the constructor
+/// counts the background itself whenever an inactive sample can read it.
 void scan_stored_values(const openvdb::FloatGrid& grid, const CoordBBox& lattice, bool ring_reads_background,
                         ValueScan& scan)
 {
-    auto it = grid.tree().cbeginValueAll();
-    it.setMaxDepth(Tree::ValueAllCIter::LEAF_DEPTH - 1); // tiles of every level, no voxel
-    for (; it; ++it) {
+    for_each_stored_tile(grid.tree(), [&](const CoordBBox& b, float value, bool active) {
         // Inactive tiles beyond the lattice are read only through a ring that reads the background.
-        if (!it.isValueOn() && !ring_reads_background && !lattice.hasOverlap(it.getBoundingBox())) continue;
-        scan.consider(*it);
-    }
+        if (!active && !ring_reads_background && !lattice.hasOverlap(b)) return;
+        scan.consider(value);
+    });
     for_each_leaf(grid.tree(), scan, [&](const Tree::LeafNodeType& leaf, ValueScan& mine) {
         for (auto v = leaf.cbeginValueAll(); v; ++v)
             if (v.isValueOn() || ring_reads_background || lattice.isInside(v.getCoord())) mine.consider(*v);

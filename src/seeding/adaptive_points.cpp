@@ -43,7 +43,7 @@ bool on_leaf_edge(const octree::AdaptiveGrid::Reader& r, const Coord& lower, int
     return false;
 }
 
-std::vector<Coord> adaptive_protective_layer(const octree::AdaptiveGrid& g, const openvdb::MaskGrid& crossed,
+std::vector<Coord> adaptive_protective_layer(const octree::AdaptiveGrid& g, const std::vector<Coord>& crossed,
                                              const std::array<int, 3>& radius)
 {
     const octree::AdaptiveGrid::Reader r(g);
@@ -51,8 +51,7 @@ std::vector<Coord> adaptive_protective_layer(const octree::AdaptiveGrid& g, cons
     openvdb::MaskGrid mask;
     auto acc = mask.getAccessor();
     std::vector<CellId> ring;
-    for (auto it = crossed.cbeginValueOn(); it; ++it) {
-        const Coord u = it.getCoord();
+    for (const Coord& u : crossed) {
         if (const auto l = r.leaf(u)) ring.push_back(*l);
         // Beyond the domain (and for leaves on its boundary) the lattice is the unit lattice.
         const CoordBBox block(u.offsetBy(-radius[0], -radius[1], -radius[2]),

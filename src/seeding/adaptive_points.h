@@ -35,7 +35,7 @@ bool on_leaf_edge(const octree::AdaptiveGrid::Reader& r, const openvdb::Coord& l
 /// \p crossed_unit_cells, plus the unit-lattice block [u - r, u + 1 + r] of every crossed unit
 /// cell for the part of it beyond the domain. In OpenVDB's deterministic order.
 std::vector<openvdb::Coord> adaptive_protective_layer(const octree::AdaptiveGrid& g,
-                                                      const openvdb::MaskGrid& crossed_unit_cells,
+                                                      const std::vector<openvdb::Coord>& crossed_unit_cells,
                                                       const std::array<int, 3>& radius);
 
 /// Leaves overlapping the unit cells of \p cells (inclusive box of unit-cell origins); unit

@@ -33,15 +33,15 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
         e.points.erase(std::remove_if(e.points.begin(), e.points.end(),
                                       [&](const octree::EdgePoint& p) { return !on_leaf_edge(*leaves, p.lower, p.axis); }),
                        e.points.end());
-        const auto uniform = octree::protective_layer(field, openvdb::MaskGrid()); // radius and bounds only
+        const auto uniform = octree::protective_layer(field, {}); // radius and bounds only
         out.layer.radius = uniform.radius;
         out.layer.bound_e = std::max(uniform.bound_e, octree::voronoi_bound_e(adaptive->k()));
         out.layer.bound_n = std::max(uniform.bound_n, octree::voronoi_bound_n(adaptive->k()));
-        out.layer.points = adaptive_protective_layer(*adaptive, *e.crossed_cells, out.layer.radius);
+        out.layer.points = adaptive_protective_layer(*adaptive, e.crossed_cells, out.layer.radius);
     } else {
-        out.layer = octree::protective_layer(field, *e.crossed_cells);
+        out.layer = octree::protective_layer(field, e.crossed_cells);
     }
-    for (auto it = e.crossed_cells->cbeginValueOn(); it; ++it) out.crossed_cells.push_back(it.getCoord());
+    out.crossed_cells = std::move(e.crossed_cells);
     st.e_points = e.points.size();
     st.g_points = out.layer.points.size();
     st.bound_e = out.layer.bound_e;
@@ -80,9 +80,7 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
         ++(s.kind == PointKind::Geometry ? st.n_geometry : st.n_topology);
         out.points.push_back({Point(s.p[0], s.p[1], s.p[2]), {id++, s.kind}});
     }
-    out.g_mask = std::make_unique<openvdb::MaskGrid>();
-    auto acc = out.g_mask->getAccessor();
-    for (const auto& g : out.layer.points) acc.setValueOn(g);
+    out.g_mask = GridPointMask(std::move(out.layer.mask), out.layer.points);
     return out;
 }
 

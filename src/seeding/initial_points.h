@@ -6,6 +6,7 @@
 // snap_edge_points.h); the thin-tube and tunnel-shoulder seeds of N (thin_tubes.h,
 // tunnel_shoulders.h); and the seeds a run is handed (partitioned meshing's blocks).
 #include "delaunay/delaunay.h"
+#include "seeding/grid_point_mask.h"
 #include "surface/mesh_field.h"
 #include "octree/adaptive_grid.h"
 #include "octree/protective_layer.h"
@@ -27,7 +28,7 @@ struct InitialPoints {
     /// order (the deterministic key of every later decision).
     std::vector<std::pair<Point, VertexInfo>> points;
     octree::ProtectiveLayer layer;               ///< G and its voxel bounds
-    std::unique_ptr<openvdb::MaskGrid> g_mask;   ///< G's grid points (the repairs add to it)
+    GridPointMask g_mask;                        ///< G's grid points (the repairs add to it)
     std::vector<openvdb::Coord> crossed_cells;   ///< lower corners of the cells Sigma crosses
 };
 

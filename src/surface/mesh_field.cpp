@@ -128,7 +128,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     in.field = &field;
     in.adaptive = adaptive;
     in.leaves = leaves.get();
-    in.g_mask = ip.g_mask.get();
+    in.g_mask = &ip.g_mask;
     in.layer_radius = {{ip.layer.radius[0], ip.layer.radius[1], ip.layer.radius[2]}};
     in.eps = eps;
     // A snapped grid point is within snap_radius of Sigma, and Sigma' within slab_shift of it.
@@ -167,7 +167,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         vp.interrupter = interrupter;
         vp.adaptive = leaves.get();
         vp.improve = options.improve_tets;
-        result.tets = build_volume_mesh(dt, refiner.cache(), field, *ip.g_mask, result.surface, vp, st.tets);
+        result.tets = build_volume_mesh(dt, refiner.cache(), field, ip.g_mask.get(), result.surface, vp, st.tets);
         st.seconds["tets"] = since(t0);
     }
     st.seconds["total"] = since(t_start);

@@ -104,7 +104,7 @@ void Refiner::repair_bound_holes()
     std::sort(over_bound_.begin(), over_bound_.end(), by_id);
     over_bound_.erase(std::unique(over_bound_.begin(), over_bound_.end()), over_bound_.end());
     std::vector<Point> add;
-    auto acc = in_.g_mask->getAccessor();
+    auto acc = in_.g_mask->get().getAccessor();
     const auto& r = in_.layer_radius;
     for (const auto& v : over_bound_) {
         const auto q = in_.field->world_to_index({v->point().x(), v->point().y(), v->point().z()});

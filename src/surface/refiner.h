@@ -20,6 +20,7 @@
 #include "octree/adaptive_grid.h"
 #include "octree/sample_field.h"
 #include "refinement/hausdorff_refinement.h"
+#include "seeding/grid_point_mask.h"
 
 #include <isodel/interrupt.h>
 #include <isodel/mesh.h>
@@ -38,7 +39,7 @@ struct RefinerInput {
     const octree::SampleField* field = nullptr;             ///< F', face slabs set
     const octree::AdaptiveGrid* adaptive = nullptr;         ///< null on a dense grid
     const octree::AdaptiveGrid::Reader* leaves = nullptr;   ///< adaptive's reader, or null
-    openvdb::MaskGrid* g_mask = nullptr;                    ///< G's grid points; repairs add to it
+    GridPointMask* g_mask = nullptr;                        ///< G's grid points; repairs add to it
     std::array<int, 3> layer_radius{{1, 1, 1}};             ///< G's trap block radius per axis
     double eps = 0;          ///< the bound M is refined to against Sigma' (world)
     double snap_radius = 0;  ///< how far snapped vertices may be from Sigma' (0 without --snap)

@@ -106,8 +106,8 @@ void require_same_as_whole_box(const openvdb::FloatGrid::Ptr& grid, double iso, 
         REQUIRE(sparse.points[i].axis == dense.points[i].axis);
         REQUIRE(sparse.points[i].index_pos == dense.points[i].index_pos);
     }
-    std::set<Coord> mask;
-    for (auto it = sparse.crossed_cells->cbeginValueOn(); it; ++it) mask.insert(it.getCoord());
+    const std::set<Coord> mask(sparse.crossed_cells.begin(), sparse.crossed_cells.end());
+    CHECK(mask.size() == sparse.crossed_cells.size());
     CHECK(mask == mixed_cells(field));
 }
 

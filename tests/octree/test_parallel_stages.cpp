@@ -1,9 +1,10 @@
 // The stages before the Delaunay triangulation run in parallel over leaves and crossed cells
-// (octree/parallel_mask.h, the tie scan of octree/sample_field.cpp, G in protective_layer.cpp,
+// (octree/voxel_set.h, the tie scan of octree/sample_field.cpp, G in protective_layer.cpp,
 // the crossed cells of edge_crossings.cpp) and must give what a serial pass gives, in the same
 // order, at any thread count: G's order is the insertion order of Del(E u G).
 #include "octree/edge_crossings.h"
-#include "octree/parallel_mask.h"
+#include "octree/stored_tiles.h"
+#include "octree/voxel_set.h"
 #include "octree/protective_layer.h"
 #include "octree/sample_field.h"
 
@@ -13,8 +14,10 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -47,13 +50,15 @@ std::vector<Coord> serial_coords(const std::vector<Coord>& cells)
     return out;
 }
 
-std::vector<Coord> parallel_coords(const std::vector<Coord>& cells, int threads)
+std::vector<Coord> parallel_coords(const std::vector<Coord>& cells, int threads, bool* sorted = nullptr)
 {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-    const auto mask = isodel::octree::parallel_mask(cells.size(), [&](std::size_t i, auto& acc) {
+    const auto set = isodel::octree::voxel_set(cells.size(), 8, [&](std::size_t i, auto& acc) {
         for (int d = 0; d < 8; ++d) acc.setValueOn(cells[i].offsetBy(d & 1, (d >> 1) & 1, (d >> 2) & 1));
     });
-    return isodel::octree::coords_of(mask->tree());
+    if (sorted) *sorted = !set.mask;
+    if (set.mask) CHECK(isodel::octree::coords_of(set.mask->tree()) == set.coords);
+    return set.coords;
 }
 
 /// A density with plateaus: quantized noise makes samples and saddles tie with v.
@@ -79,10 +84,46 @@ TEST_CASE("parallel masks list the serial mask's voxels in its order", "[octree]
         REQUIRE(serial.size() > 10000);
         CHECK(parallel_coords(cells, 1) == serial);
         CHECK(parallel_coords(cells, 2) == serial);
-        // Few items take the one-thread path (no per-thread trees): the same voxels, same order.
-        const std::vector<Coord> few(cells.begin(), cells.begin() + 1000);
-        CHECK(parallel_coords(few, 2) == serial_coords(few));
+        // Few items are sorted by vdb_order_less (no tree at all): the same voxels, same order,
+        // across root entries and negative coordinates.
+        bool sorted = false;
+        std::vector<Coord> few;
+        for (std::size_t i = 0; i < cells.size(); i += cells.size() / 200) few.push_back(cells[i]);
+        few.push_back(Coord(-1, -1, -1));
+        few.push_back(Coord(4095, -4097, 7));
+        CHECK(parallel_coords(few, 2, &sorted) == serial_coords(few));
+        CHECK(sorted);
+        CHECK(parallel_coords(cells, 2, &sorted) == serial);
+        CHECK(!sorted);
     }
+}
+
+TEST_CASE("stored tiles are the tiles a value iterator finds, less inactive background ones", "[octree][sparse]")
+{
+    auto grid = openvdb::FloatGrid::create(3.f);
+    auto& tree = grid->tree();
+    tree.addTile(3, Coord(-4096, 0, 0), -3.f, false);   // a root tile of another value
+    tree.addTile(2, Coord(128, 0, -128), 1.f, true);     // an active top-level tile
+    tree.addTile(1, Coord(-8, -8, 0), 3.f, true);        // active, at the background value
+    tree.addTile(1, Coord(16, 0, 0), 3.f, false);        // inactive background: skipped
+    tree.addTile(1, Coord(24, 0, 0), 2.f, false);        // inactive, another value
+    tree.setValueOn(Coord(0, 0, 0), 0.f);               // a leaf: not a tile
+    using Tile = std::tuple<Coord, Coord, float, bool>;
+    std::vector<Tile> expect, found;
+    auto it = tree.cbeginValueAll();
+    it.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    for (; it; ++it)
+        if (it.isValueOn() || *it != tree.background()) {
+            const auto b = it.getBoundingBox();
+            expect.emplace_back(b.min(), b.max(), *it, it.isValueOn());
+        }
+    isodel::octree::for_each_stored_tile(tree, [&](const openvdb::CoordBBox& b, float v, bool on) {
+        found.emplace_back(b.min(), b.max(), v, on);
+    });
+    std::sort(expect.begin(), expect.end());
+    std::sort(found.begin(), found.end());
+    CHECK(expect.size() == 4);
+    CHECK(found == expect);
 }
 
 TEST_CASE("coords_of lists a mask's active tiles voxel by voxel", "[octree][sparse]")
@@ -106,8 +147,8 @@ TEST_CASE("G and the crossed cells are the same at 1 and 2 threads", "[octree][s
     for (int threads : {1, 2}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
         const auto e = isodel::octree::edge_crossings(field);
-        for (auto it = e.crossed_cells->cbeginValueOn(); it; ++it) crossed[threads - 1].push_back(it.getCoord());
-        g[threads - 1] = isodel::octree::protective_layer(field, *e.crossed_cells).points;
+        crossed[threads - 1] = e.crossed_cells;
+        g[threads - 1] = isodel::octree::protective_layer(field, e.crossed_cells).points;
         if (threads == 1) {
             // Every crossed cell is one of the four around a crossed edge, and each of those is.
             std::vector<Coord> cells;

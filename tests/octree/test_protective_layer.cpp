@@ -58,13 +58,13 @@ TEST_CASE("protective layer: the E-point bound is Theorem 2's 4 cells only on or
     CHECK(octree::orthogonal_lattice(fa));
     CHECK(octree::orthogonal_lattice(fr));
     CHECK_FALSE(octree::orthogonal_lattice(fs));
-    const auto lc = octree::protective_layer(fc, openvdb::MaskGrid());
-    const auto ls = octree::protective_layer(fs, openvdb::MaskGrid());
+    const auto lc = octree::protective_layer(fc, std::vector<openvdb::Coord>{});
+    const auto ls = octree::protective_layer(fs, std::vector<openvdb::Coord>{});
     CHECK(lc.bound_e == 4);
     CHECK(lc.bound_n == 27);
     CHECK(ls.bound_e == ls.bound_n);
     CHECK(ls.bound_n == 27); // a one-voxel layer still covers this shear (layer_radius)
-    CHECK(octree::protective_layer(fr, openvdb::MaskGrid()).bound_e == 4);
+    CHECK(octree::protective_layer(fr, std::vector<openvdb::Coord>{}).bound_e == 4);
 }
 
 TEST_CASE("protective layer: on a sheared lattice the measured E-point maximum stays within the reported bound",

@@ -85,12 +85,12 @@ TEST_CASE("adaptive E points are the leaf-edge crossings and G holds the leaf la
             }
             CHECK(worst < 1e-5); // the dense samples are the leaves' values rounded to float
 
-            const auto layer = mesher::adaptive_protective_layer(*g, *e.crossed_cells, {1, 1, 1});
+            const auto layer = mesher::adaptive_protective_layer(*g, e.crossed_cells, {1, 1, 1});
             const std::set<openvdb::Coord> have(layer.begin(), layer.end());
             std::size_t missing = 0;
             for (const auto& c : octree::adaptive_protective_layer(*g, raw)) missing += !have.count(c);
             CHECK(missing == 0);
-            CHECK(layer.size() < std::size_t(octree::protective_layer(field, *e.crossed_cells).points.size()));
+            CHECK(layer.size() < std::size_t(octree::protective_layer(field, e.crossed_cells).points.size()));
         }
 }
 

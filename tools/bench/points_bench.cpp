@@ -1,7 +1,7 @@
 // points_bench: the stages before the Delaunay triangulation, stage by stage, at 1 and 2
 // threads, against the whole run. One row per volume of ../shared/data (every .vdb entry of the
 // manifest without expect_error) and of any --data directory (tools/bench/protein_128_bench.sh
-// makes the 128^3 protein). Columns (medians of --reps, seconds):
+// makes the 128^3 protein). Columns (medians of --reps, milliseconds):
 //   field   SampleField construction: value range and the tie scan of samples and face/cell
 //           saddles (octree/sample_field.cpp)
 //   E, G, tubes   edge_crossings, protective_layer, thin tubes + tunnel shoulders
@@ -62,11 +62,10 @@ Stages run_stages(const openvdb::FloatGrid::Ptr& grid, double iso, isodel::Insid
     const auto e = isodel::octree::edge_crossings(field);
     s.e = since(t0);
     t0 = Clock::now();
-    const auto layer = isodel::octree::protective_layer(field, *e.crossed_cells);
+    const auto layer = isodel::octree::protective_layer(field, e.crossed_cells);
     s.g = since(t0);
     t0 = Clock::now();
-    std::vector<openvdb::Coord> cells;
-    for (auto it = e.crossed_cells->cbeginValueOn(); it; ++it) cells.push_back(it.getCoord());
+    const std::vector<openvdb::Coord>& cells = e.crossed_cells;
     const auto tubes = isodel::mesher::thin_tube_points(field, cells);
     const auto necks = isodel::mesher::tunnel_shoulder_points(field, cells);
     s.tubes = since(t0);
@@ -164,10 +163,12 @@ int main(int argc, char** argv)
             const double p1 = median(pre1), p2 = median(pre2), share = median(points) / median(total);
             worst_share = std::max(worst_share, share);
             worst_x = std::min(worst_x, p1 / p2);
-            std::printf("%-44s %9llu %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %5.2f %7.3f %7.2f %5.1f%%\n",
+            const double ms = 1e3;
+            std::printf("%-44s %9llu %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5.2f %7.2f %7.1f %5.1f%%\n",
                         e.name.substr(0, 44).c_str(), (unsigned long long)vol.grid->activeVoxelCount(),
-                        med(one, &Stages::field), med(one, &Stages::e), med(one, &Stages::g),
-                        med(one, &Stages::tubes), p1, p2, p1 / p2, median(points), median(total), 100 * share);
+                        ms * med(one, &Stages::field), ms * med(one, &Stages::e), ms * med(one, &Stages::g),
+                        ms * med(one, &Stages::tubes), ms * p1, ms * p2, p1 / p2, ms * median(points),
+                        ms * median(total), 100 * share);
             std::fflush(stdout);
         }
     std::printf("worst share %.1f%%, smallest 1/%d-thread ratio of the pre-Delaunay stages %.2f\n", 100 * worst_share,
