@@ -21,6 +21,17 @@ void for_each_stored_tile_below(const Node& node, const typename Node::ValueType
     const auto& children = node.getChildMask();
     const auto& active = node.getValueMask();
     for (openvdb::Index i = 0; i < Node::NUM_VALUES; ++i) {
+        // A word of 64 slots without children or active tiles (most of a sparse grid's top
+        // nodes): only a value other than the background can make one of them count.
+        if (i % 64 == 0 && children.template getWord<openvdb::Index64>(i / 64) == 0 &&
+            active.template getWord<openvdb::Index64>(i / 64) == 0) {
+            bool all_background = true;
+            for (openvdb::Index j = i; j < i + 64; ++j) all_background &= table[j].getValue() == background;
+            if (all_background) {
+                i += 63;
+                continue;
+            }
+        }
         if (children.isOn(i)) {
             if constexpr (Node::LEVEL > 1) for_each_stored_tile_below(*table[i].getChild(), background, fn);
             continue; // a leaf: its values are voxels, not tiles

@@ -9,6 +9,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -17,27 +18,74 @@
 
 namespace isodel::octree {
 
-/// The position of voxel \p c in a MaskTree's iteration order, as a key compared
-/// lexicographically: the top-level node's origin (the root table is ordered by it), then the
-/// offsets within the top node, the middle node and the leaf, each x-major as OpenVDB's
-/// coordToOffset numbers them.
-struct VdbOrderKey {
-    openvdb::Coord origin;
-    std::uint64_t offsets = 0;
+/// A voxel's position in a MaskTree's iteration order: the top-level node's origin (the root
+/// table is ordered by it), then the offsets within the top node, the middle node and the leaf,
+/// each x-major as OpenVDB's coordToOffset numbers them. The offsets (36 bits) locate the voxel
+/// within its top node exactly, so a key made of an origin's rank and the offsets is also the
+/// voxel itself.
+namespace vdb_order {
+using Top = openvdb::MaskTree::RootNodeType::ChildNodeType;
+using Middle = Top::ChildNodeType;
+using Leaf = Middle::ChildNodeType;
+constexpr int kLeafBits = 3 * Leaf::LOG2DIM, kMiddleBits = 3 * Middle::LOG2DIM, kTopBits = 3 * Top::LOG2DIM;
+constexpr int kOffsetBits = kTopBits + kMiddleBits + kLeafBits;
 
-    explicit VdbOrderKey(const openvdb::Coord& c)
-    {
-        using Top = openvdb::MaskTree::RootNodeType::ChildNodeType;
-        using Middle = Top::ChildNodeType;
-        using Leaf = Middle::ChildNodeType;
-        origin = c & ~(Top::DIM - 1);
-        offsets = (std::uint64_t(Top::coordToOffset(c)) << (3 * (Middle::LOG2DIM + Leaf::LOG2DIM))) |
-                  (std::uint64_t(Middle::coordToOffset(c)) << (3 * Leaf::LOG2DIM)) | Leaf::coordToOffset(c);
+inline openvdb::Coord origin(const openvdb::Coord& c) { return c & ~(Top::DIM - 1); }
+inline std::uint64_t offsets(const openvdb::Coord& c)
+{
+    return (std::uint64_t(Top::coordToOffset(c)) << (kMiddleBits + kLeafBits)) |
+           (std::uint64_t(Middle::coordToOffset(c)) << kLeafBits) | Leaf::coordToOffset(c);
+}
+inline openvdb::Coord voxel(const openvdb::Coord& origin, std::uint64_t offsets)
+{
+    openvdb::Coord top, middle;
+    Top::offsetToLocalCoord(openvdb::Index(offsets >> (kMiddleBits + kLeafBits)), top);
+    Middle::offsetToLocalCoord(openvdb::Index((offsets >> kLeafBits) & ((1u << kMiddleBits) - 1)), middle);
+    const openvdb::Coord leaf = Leaf::offsetToLocalCoord(openvdb::Index(offsets & ((1u << kLeafBits) - 1)));
+    const auto scaled = [](const openvdb::Coord& c, int s) { return openvdb::Coord(c.x() * s, c.y() * s, c.z() * s); };
+    return origin + scaled(top, int(Middle::DIM)) + scaled(middle, int(Leaf::DIM)) + leaf;
+}
+} // namespace vdb_order
+
+/// Whether \p a comes before \p b in a MaskTree's iteration order.
+inline bool vdb_order_less(const openvdb::Coord& a, const openvdb::Coord& b)
+{
+    const openvdb::Coord oa = vdb_order::origin(a), ob = vdb_order::origin(b);
+    return oa < ob || (oa == ob && vdb_order::offsets(a) < vdb_order::offsets(b));
+}
+
+/// \p voxels, each once, sorted by vdb_order_less: 64-bit keys (the rank of the voxel's top
+/// node among those touched, then its offsets) sorted as integers.
+inline std::vector<openvdb::Coord> sorted_in_vdb_order(const std::vector<openvdb::Coord>& voxels)
+{
+    std::vector<openvdb::Coord> origins; // the top nodes touched, each once, in root order
+    for (const openvdb::Coord& c : voxels) {
+        const openvdb::Coord o = vdb_order::origin(c);
+        if (origins.empty() || origins.back() != o) origins.push_back(o); // runs: neighbours share a node
     }
-    bool operator<(const VdbOrderKey& o) const { return origin < o.origin || (origin == o.origin && offsets < o.offsets); }
-};
-
-inline bool vdb_order_less(const openvdb::Coord& a, const openvdb::Coord& b) { return VdbOrderKey(a) < VdbOrderKey(b); }
+    std::sort(origins.begin(), origins.end());
+    origins.erase(std::unique(origins.begin(), origins.end()), origins.end());
+    // Keys in parallel and a parallel sort: equal keys are the same voxel, so the sorted list
+    // is the same however the sort splits it.
+    constexpr std::size_t grain = 4096;
+    std::vector<std::uint64_t> keys(voxels.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels.size(), grain), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const openvdb::Coord& c = voxels[i];
+            const auto rank = std::uint64_t(std::lower_bound(origins.begin(), origins.end(), vdb_order::origin(c)) - origins.begin());
+            keys[i] = rank << vdb_order::kOffsetBits | vdb_order::offsets(c);
+        }
+    });
+    tbb::parallel_sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<openvdb::Coord> out(keys.size());
+    const std::uint64_t offset_mask = (std::uint64_t(1) << vdb_order::kOffsetBits) - 1;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keys.size(), grain), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+            out[i] = vdb_order::voxel(origins[keys[i] >> vdb_order::kOffsetBits], keys[i] & offset_mask);
+    });
+    return out;
+}
 
 /// The active voxels of a mask without tiles, in its iteration order, listed in parallel: the
 /// leaf manager holds the leaves in iteration order, and each leaf writes at its prefix offset.
@@ -68,9 +116,10 @@ struct VoxelSet {
 };
 
 /// Few marks are sorted rather than put in a tree: a MaskTree costs its internal nodes' tables
-/// (a quarter of a megabyte zeroed, and paged in, per top-level node touched) however few
-/// voxels it holds, which dominates a small volume's whole run.
-constexpr std::size_t kSortedVoxelSetMarks = 4096;
+/// (a quarter of a megabyte zeroed, and paged in, per top-level node touched, per thread)
+/// however few voxels it holds, which dominates a small volume's whole run; a small volume
+/// around the origin touches eight top-level nodes.
+constexpr std::size_t kSortedVoxelSetMarks = std::size_t(1) << 16;
 
 /// The union over i in [0, n) of the voxels \p mark(i, sink) sets on with sink.setValueOn(c),
 /// about \p marks_per_item each: sorted on one thread when there are few, else marked in
@@ -85,13 +134,7 @@ VoxelSet voxel_set(std::size_t n, std::size_t marks_per_item, const Mark& mark)
             void setValueOn(const openvdb::Coord& c) { to.push_back(c); }
         } sink{out.coords};
         for (std::size_t i = 0; i < n; ++i) mark(i, sink);
-        std::vector<std::pair<VdbOrderKey, openvdb::Coord>> keyed;
-        keyed.reserve(out.coords.size());
-        for (const openvdb::Coord& c : out.coords) keyed.emplace_back(VdbOrderKey(c), c);
-        std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        out.coords.clear();
-        for (std::size_t i = 0; i < keyed.size(); ++i)
-            if (i == 0 || keyed[i].second != keyed[i - 1].second) out.coords.push_back(keyed[i].second);
+        out.coords = sorted_in_vdb_order(out.coords);
         return out;
     }
     out.mask = openvdb::MaskGrid::create();

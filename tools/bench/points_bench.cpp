@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -160,6 +161,9 @@ int main(int argc, char** argv)
             std::vector<double> pre1, pre2;
             for (const auto& s : one) pre1.push_back(s.pre());
             for (const auto& s : two) pre2.push_back(s.pre());
+            if (std::getenv("PB_DEBUG"))
+                std::fprintf(stderr, "%s 2 threads: field %.2f E %.2f G %.2f tubes %.2f\n", e.name.c_str(), 1e3 * med(two, &Stages::field),
+                             1e3 * med(two, &Stages::e), 1e3 * med(two, &Stages::g), 1e3 * med(two, &Stages::tubes));
             const double p1 = median(pre1), p2 = median(pre2), share = median(points) / median(total);
             worst_share = std::max(worst_share, share);
             worst_x = std::min(worst_x, p1 / p2);
