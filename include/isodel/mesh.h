@@ -43,6 +43,9 @@ namespace isodel {
 /// bounding box grown by one voxel, enlarged to hold the protective layer). Both: both, tagged.
 enum class TetRegion { None, Inside, Outside, Both };
 
+/// The smallest MeshOptions::block_voxels: the collar of cubic voxels.
+constexpr int kMinBlockVoxels = 4;
+
 struct MeshOptions {
     double isovalue = 0.0;               ///< v, in value units
     std::optional<Inside> inside;        ///< default: Below for level-set grids, Above otherwise
@@ -69,6 +72,9 @@ struct MeshOptions {
     /// many voxels per axis, meshes each block with a protective collar concurrently, then
     /// merges their points in one Delaunay triangulation whose closed-ball and eps checks fix
     /// the seams (src/surface/partitioned_meshing.h). 0 = one block. Same guarantees either way.
+    /// At least kMinBlockVoxels: each block is meshed with a collar of 4 voxels or more on each
+    /// side, so smaller blocks repeat the same work many times over (a block of 1 voxel meshes
+    /// 9^3 voxels for each one it owns, a block of 4 at most 3^3). At most 10^6 blocks.
     int block_voxels = 0;
     /// Check the surface with isodel's verifier (include/isodel/verify.h: topology against an
     /// independent computation of Sigma's, the eps bound, a closed oriented 2-manifold without

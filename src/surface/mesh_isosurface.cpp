@@ -162,7 +162,9 @@ void check_mesh_options(const MeshOptions& o)
         refuse("eps_voxels must be positive and finite (got " + num(o.eps_voxels) + ")");
     if (o.threads < 0) refuse("threads must be 0 (all) or positive (got " + std::to_string(o.threads) + ")");
     if (o.max_rounds < 1) refuse("max_rounds must be at least 1 (got " + std::to_string(o.max_rounds) + ")");
-    if (o.block_voxels < 0) refuse("block_voxels must be 0 (off) or positive (got " + std::to_string(o.block_voxels) + ")");
+    if (o.block_voxels < 0 || (o.block_voxels > 0 && o.block_voxels < kMinBlockVoxels))
+        refuse("block_voxels must be 0 (off) or at least " + std::to_string(kMinBlockVoxels) +
+               " (smaller blocks mesh their collars over and over; got " + std::to_string(o.block_voxels) + ")");
     // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
     if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
         refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");

@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <memory>
 #include <mutex>
+#include <sstream>
 
 namespace isodel::mesher {
 namespace {
@@ -81,6 +82,13 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
     if (block_voxels < 1) throw InvalidInput("block size must be at least one voxel");
     const openvdb::Coord o = field.domain().min();
     const std::array<int, 3> n = block_count(field, block_voxels);
+    const double count = double(n[0]) * n[1] * n[2];
+    if (count > kMaxBlocks) {
+        std::ostringstream os;
+        os << "block size " << block_voxels << " cuts the domain into " << count << " blocks, more than " << kMaxBlocks
+           << ": choose larger blocks";
+        throw InvalidInput(os.str());
+    }
     std::vector<BlockSpec> out;
     for (int z = 0; z < n[2]; ++z)
         for (int y = 0; y < n[1]; ++y)

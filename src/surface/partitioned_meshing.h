@@ -47,8 +47,13 @@ struct BlockSpec {
 /// The protective collar, in voxels per axis, for \p field: 2r + 2 with r the layer radius.
 std::array<int, 3> collar_voxels(const octree::SampleField& field);
 
+/// Partitions of more blocks than this are refused: every block costs a task and a clipped
+/// field even when empty, so a tiny block size on a large box would run for hours.
+constexpr double kMaxBlocks = 1e6;
+
 /// Blocks of \p block_voxels cells per axis covering the cells of field.domain(), in
 /// lexicographic (z, y, x) order.
+/// \throw InvalidInput block_voxels < 1, or more than kMaxBlocks blocks
 std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int block_voxels,
                                         const std::array<int, 3>& collar);
 

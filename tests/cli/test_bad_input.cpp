@@ -7,6 +7,7 @@
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
+#include <filesystem>
 
 using namespace isodel::test;
 
@@ -188,6 +189,15 @@ TEST_CASE("usage errors: exit 2 and one line", "[cli][errors]")
         CHECK(r.err.rfind("isodel: ", 0) == 0);
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     }
+    // A block size that would mesh each voxel's collar over and over: refused before any work.
+    const std::string out = scratch / "blocks.ply";
+    const RunResult tiny = run_isodel("mesh " + shell_quote(std::string(ISODEL_TEST_DATA) + "/two_blobs.mrc") +
+                                          " --iso 0.5 --blocks 1 -o " + shell_quote(out),
+                                      scratch.path());
+    CHECK(tiny.status == 2);
+    CHECK(tiny.err.find("at least 4") != std::string::npos);
+    CHECK(std::count(tiny.err.begin(), tiny.err.end(), '\n') == 1);
+    CHECK(!std::filesystem::exists(out));
     const RunResult help = run_isodel("mesh --help", scratch.path());
     CHECK(help.status == 0);
     for (const char* opt : {"--iso", "--grid", "--inside", "--eps", "--eps-voxels", "--tets", "--region", "--threads",

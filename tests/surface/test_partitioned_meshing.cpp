@@ -113,7 +113,7 @@ TEST_CASE("partitioned meshes verify: topology, eps and Delaunay conformity", "[
         for (bool quantized : {false, true}) {
             INFO("random volume seed " << seed << (quantized ? " quantized" : ""));
             const auto grid = testing::random_volume(quantized ? 5 : 10, seed, quantized);
-            const MeshResult r = mesh_blocks(*grid, quantized ? 3 : 4, 0.25);
+            const MeshResult r = mesh_blocks(*grid, 4, 0.25);
             const VerifyReport rep = verify(*grid, r.surface, 0.25);
             INFO(rep.summary());
             CHECK(rep.passed());
@@ -143,6 +143,22 @@ TEST_CASE("partitioned meshing refuses adaptive grids and bad block sizes", "[me
     openvdb::FloatGrid::ConstPtr g = grid;
     const octree::SampleField field(g, 0.0, Inside::Above);
     CHECK_THROWS_AS(mesher::partition_domain(field, 0, {4, 4, 4}), InvalidInput);
+    // Blocks smaller than the collar are refused before any work; 4 is the smallest.
+    MeshOptions mo;
+    for (int b : {1, 2, 3}) {
+        mo.block_voxels = b;
+        CHECK_THROWS_WITH(check_mesh_options(mo), Catch::Contains("at least 4") && Catch::Contains("got " + std::to_string(b)));
+        CHECK_THROWS_AS(mesh_isosurface(*grid, mo), InvalidInput);
+    }
+    mo.block_voxels = kMinBlockVoxels;
+    CHECK_NOTHROW(check_mesh_options(mo));
+    // A box so large that blocks of 8 would number 10^9: refused, not run for hours.
+    auto far = openvdb::FloatGrid::create(-1.f);
+    far->tree().setValueOn(openvdb::Coord(0), 1.f);
+    far->tree().setValueOn(openvdb::Coord(8000), 1.f);
+    const octree::SampleField wide(far, 0.0, Inside::Above);
+    CHECK_THROWS_WITH(mesher::partition_domain(wide, 8, {4, 4, 4}), Catch::Contains("choose larger blocks"));
+    CHECK(mesher::partition_domain(wide, 4000, {4, 4, 4}).size() == 27); // 8003 samples a side: 3 blocks
 }
 
 

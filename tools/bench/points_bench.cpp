@@ -10,7 +10,8 @@
 //   total   that run's total; share = points / total
 //
 //   points_bench [--data DIR]... [--reps 3] [--whole-reps 1] [--eps-voxels 0.5] [--threads 2]
-//                [--only SUBSTRING]
+//                [--only SUBSTRING] [--stages-at-threads 1]
+// --stages-at-threads 1 adds a line per volume: each stage's median at --threads.
 // The stages run --reps times, the whole run --whole-reps times (its points and total are
 // medians over those).
 #include "support/bench_support.h"
@@ -29,7 +30,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -109,6 +109,7 @@ int main(int argc, char** argv)
     int reps = 3, whole_reps = 1, threads = 2;
     double eps_voxels = 0.5;
     std::string only;
+    bool stages_at_threads = false;
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i], v = argv[i + 1];
         if (a == "--data") dirs.push_back(v);
@@ -117,6 +118,7 @@ int main(int argc, char** argv)
         else if (a == "--threads") threads = std::max(1, std::stoi(v));
         else if (a == "--eps-voxels") eps_voxels = std::stod(v);
         else if (a == "--only") only = v;
+        else if (a == "--stages-at-threads") stages_at_threads = v == "1";
         else {
             std::fprintf(stderr, "points_bench: unknown option %s\n", a.c_str());
             return 2;
@@ -161,8 +163,8 @@ int main(int argc, char** argv)
             std::vector<double> pre1, pre2;
             for (const auto& s : one) pre1.push_back(s.pre());
             for (const auto& s : two) pre2.push_back(s.pre());
-            if (std::getenv("PB_DEBUG"))
-                std::fprintf(stderr, "%s 2 threads: field %.2f E %.2f G %.2f tubes %.2f\n", e.name.c_str(), 1e3 * med(two, &Stages::field),
+            if (stages_at_threads)
+                std::printf("  at %d threads: field %.2f E %.2f G %.2f tubes %.2f\n", threads, 1e3 * med(two, &Stages::field),
                              1e3 * med(two, &Stages::e), 1e3 * med(two, &Stages::g), 1e3 * med(two, &Stages::tubes));
             const double p1 = median(pre1), p2 = median(pre2), share = median(points) / median(total);
             worst_share = std::max(worst_share, share);

@@ -64,7 +64,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                   "gather (paper Section 5): fewer, better spaced points");
     cmd->add_option("--blocks", o->blocks,
                     "Partitioned meshing (paper Fig. 8): blocks of this many voxels per axis, meshed "
-                    "concurrently with protective collars, then merged (dense grids; 0 = off)")
+                    "concurrently with protective collars, then merged (dense grids; 0 = off, else at least 4)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--certify", o->certify,
                   "Verify the surface before writing it (topology against an independent computation, eps, "
