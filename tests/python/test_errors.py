@@ -104,6 +104,31 @@ def test_progress_returning_false_cancels(data):
     assert len(isodel.mesh(data / "two_blobs.mrc", 0.5, eps_voxels=0.5).triangles) > 0
 
 
+def test_other_threads_run_while_meshing():
+    """The GIL is released: a Python thread keeps counting during the call."""
+    arr = egg_crate(32)
+    counts, stop = [0], threading.Event()
+
+    def count():
+        while not stop.is_set():
+            counts[0] += 1
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    try:
+        t0 = time.monotonic()
+        before = counts[0]
+        isodel.mesh(arr, 0.1, eps_voxels=0.5)  # no progress callback: the thread must still run
+        during, elapsed = counts[0] - before, time.monotonic() - t0
+    finally:
+        stop.set()
+        t.join()
+    assert elapsed > 0.2
+    # Holding the GIL for the whole call would leave the thread at 0; it ticks up to 1000 times a second.
+    assert during > max(10, 50 * elapsed), f"{during} counts in {elapsed:.2f}s"
+
+
 def test_exception_in_progress_propagates(data):
     def progress(stage, fraction):
         raise ZeroDivisionError("from the callback")
