@@ -74,6 +74,15 @@ def test_bad_options(kwargs, message):
         isodel.mesh(blobs(), 0.45, **kwargs)
 
 
+def test_a_stated_bound_raises_guarantee_violated(data):
+    path = str(data / "two_blobs.mrc")
+    with pytest.raises(isodel.GuaranteeViolated, match=r"^" + path + ": refinement stopped by the round bound") as e:
+        isodel.mesh(path, 0.5, eps_voxels=0.1, max_rounds=1)
+    assert isinstance(e.value, RuntimeError)
+    # certify=True verifies before returning: a correct mesh comes back.
+    assert isodel.mesh(path, 0.5, certify=True).stats["counts"]["triangles"] > 0
+
+
 def test_progress_is_called_from_the_calling_thread(data):
     calls = []
 

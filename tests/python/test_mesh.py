@@ -36,11 +36,12 @@ def test_mrc_to_meshio_round_trip(tmp_path, data):
     # World units: every vertex within the file's world box.
     assert (m.vertices >= np.array(origin) - 1e-9).all()
     assert (m.vertices <= np.array(origin) + voxel * (np.array(arr.shape[::-1]) - 1) + 1e-9).all()
-    out = tmp_path / "surface.vtu"
-    m.to_meshio().write(str(out))
-    back = meshio.read(str(out))
-    np.testing.assert_array_equal(back.points, m.vertices)
-    np.testing.assert_array_equal(back.cells_dict["triangle"], m.triangles)
+    for name in ("surface.vtu", "surface.ply"):
+        out = tmp_path / name
+        m.to_meshio().write(str(out))
+        back = meshio.read(str(out))
+        np.testing.assert_array_equal(back.points, m.vertices)
+        np.testing.assert_array_equal(back.cells_dict["triangle"], m.triangles)
     # The file itself meshes the same (path input, its own spacing and origin).
     by_path = isodel.mesh(data / "two_blobs.mrc", 0.5, eps_voxels=0.5)
     np.testing.assert_array_equal(by_path.vertices, m.vertices)

@@ -82,11 +82,15 @@ class Mesh:
         with the surface triangles. Needs meshio (Debian: python3-meshio)."""
         import meshio  # imported here: meshio is optional
 
+        # int32 indices where they fit: several of meshio's writers (PLY) cannot store int64.
+        def cells(a: np.ndarray) -> np.ndarray:
+            return a.astype(np.int32) if a.size == 0 or a.max() < 2**31 else a
+
         if not volume:
-            return meshio.Mesh(self.vertices, [("triangle", self.triangles)])
+            return meshio.Mesh(self.vertices, [("triangle", cells(self.triangles))])
         if self.tets is None:
             raise ValueError("to_meshio(volume=True): this mesh has no tetrahedra (mesh with tets=...)")
-        return meshio.Mesh(self.tet_vertices, [("tetra", self.tets), ("triangle", self.triangles)],
+        return meshio.Mesh(self.tet_vertices, [("tetra", cells(self.tets)), ("triangle", cells(self.triangles))],
                            cell_data={"region": [self.regions, np.zeros(len(self.triangles), np.int64)]})
 
     def __repr__(self) -> str:
