@@ -138,6 +138,11 @@ def test_other_threads_run_while_meshing():
     assert during > max(10, 50 * elapsed), f"{during} counts in {elapsed:.2f}s"
 
 
+def test_progress_must_be_callable():
+    with pytest.raises(TypeError, match="progress: expected None or a callable"):
+        isodel.mesh(blobs(), 0.45, progress=5)
+
+
 def test_exception_in_progress_propagates(data):
     def progress(stage, fraction):
         raise ZeroDivisionError("from the callback")

@@ -51,6 +51,13 @@ def _volume_arg(volume: Any) -> Any:
     return np.asarray(volume)
 
 
+def _progress_arg(progress: Optional[ProgressCallback]) -> Optional[ProgressCallback]:
+    """Refused before any work, not at the first call from inside the run."""
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress: expected None or a callable(stage, fraction), got {type(progress).__name__}")
+    return progress
+
+
 def _triple(name: str, value: Sequence[float]) -> Tuple[float, float, float]:
     t = tuple(float(v) for v in np.broadcast_to(np.asarray(value, dtype=float), (3,)))
     if len(t) != 3:
@@ -149,7 +156,7 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
     args.max_points = int(max_points)
     args.facet_angle_deg = float(facet_angle_deg)
     raw = _isodel.mesh(_volume_arg(volume), args, _triple("spacing", spacing), _triple("origin", origin),
-                       axis_order, grid, progress)
+                       axis_order, grid, _progress_arg(progress))
     return Mesh(raw)
 
 
@@ -178,7 +185,7 @@ def verify(volume: Any, iso: float, mesh: Any, *, eps: Optional[float] = None,
                             None if eps_voxels is None else float(eps_voxels), inside,
                             _triple("spacing", spacing), _triple("origin", origin), axis_order, grid,
                             int(refine), bool(check_delaunay), bool(check_self_intersections),
-                            bool(strict_topology), progress)
+                            bool(strict_topology), _progress_arg(progress))
     return json.loads(report)
 
 
@@ -228,7 +235,7 @@ def decimate(volume: Any, output: "str | os.PathLike[str]", *, k: int, tolerance
     return _isodel.decimate(_volume_arg(volume), os.fspath(output), int(k), float(tolerance),
                             None if iso is None else float(iso), float(band), int(max_level),
                             _triple("spacing", spacing), _triple("origin", origin), axis_order, grid,
-                            progress)
+                            _progress_arg(progress))
 
 
 def info(volume: Any, *, spacing: Sequence[float] = (1, 1, 1), origin: Sequence[float] = (0, 0, 0),
