@@ -88,6 +88,8 @@ void certify_against(const openvdb::FloatGrid& grid, Inside inside, double eps, 
 MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid* adaptive, const MeshOptions& options,
                      Interrupter* interrupter, std::vector<std::array<double, 3>>* points = nullptr)
 {
+    // Options are checked before any work: a partitioned run checks them only at its merge.
+    check_mesh_options(options);
     // Share the grid without copying it: the field keeps a non-owning pointer for the call.
     openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
     const Inside inside = inside_side(grid, options);
@@ -192,6 +194,7 @@ MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& opti
     if (options.adaptive)
         throw InvalidInput("adaptive meshing needs the original volume: this input is adaptive already (decimated); "
                            "mesh it without adaptive, or mesh the original");
+    check_mesh_options(options);
     const auto t0 = Clock::now();
     const octree::AdaptiveGrid g = octree::to_adaptive_grid(volume);
     const openvdb::FloatGrid::Ptr dense = octree::resample_dense(g);

@@ -144,11 +144,19 @@ TEST_CASE("partitioned meshing refuses adaptive grids and bad block sizes", "[me
     const octree::SampleField field(g, 0.0, Inside::Above);
     CHECK_THROWS_AS(mesher::partition_domain(field, 0, {4, 4, 4}), InvalidInput);
     // Blocks smaller than the collar are refused before any work; 4 is the smallest.
+    // Refused before any work: no stage polls the interrupter (the blocks' merge used to refuse
+    // them only after meshing every block).
+    struct CountPolls final : Interrupter {
+        std::atomic<int> calls{0};
+        bool wasInterrupted(int) override { return ++calls < 0; }
+    };
     MeshOptions mo;
     for (int b : {1, 2, 3}) {
         mo.block_voxels = b;
         CHECK_THROWS_WITH(check_mesh_options(mo), Catch::Contains("at least 4") && Catch::Contains("got " + std::to_string(b)));
-        CHECK_THROWS_AS(mesh_isosurface(*grid, mo), InvalidInput);
+        CountPolls polls;
+        CHECK_THROWS_AS(mesh_isosurface(*grid, mo, &polls), InvalidInput);
+        CHECK(polls.calls == 0);
     }
     mo.block_voxels = kMinBlockVoxels;
     CHECK_NOTHROW(check_mesh_options(mo));
