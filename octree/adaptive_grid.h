@@ -39,6 +39,14 @@ inline Coord align_down(const Coord& c, int l)
     return Coord(align_down(c.x(), l), align_down(c.y(), l), align_down(c.z(), l));
 }
 
+/// True when two closed index boxes share at least a point (a corner, an edge, a face or more).
+inline bool boxes_touch(const CoordBBox& a, const CoordBBox& b)
+{
+    for (int ax = 0; ax < 3; ++ax)
+        if (a.max()[ax] < b.min()[ax] || b.max()[ax] < a.min()[ax]) return false;
+    return true;
+}
+
 /// A cell: lowest corner (index space, aligned to 2^level) and level.
 struct CellId {
     Coord origin;

@@ -5,12 +5,6 @@
 namespace isodel::octree {
 
 namespace {
-bool touch(const CoordBBox& a, const CoordBBox& b)
-{
-    for (int ax = 0; ax < 3; ++ax)
-        if (a.max()[ax] < b.min()[ax] || b.max()[ax] < a.min()[ax]) return false;
-    return true;
-}
 
 Contact contact_of(const CoordBBox& a, const CoordBBox& b)
 {
@@ -35,7 +29,7 @@ void collect(const AdaptiveGrid::Reader& r, const CellId& c, const CellId& b, st
     for (int m = 0; m < 8; ++m) {
         const CellId ch{b.origin.offsetBy((m & 1) * h, ((m >> 1) & 1) * h, ((m >> 2) & 1) * h),
                         b.level - 1};
-        if (touch(ch.nodes(), c.nodes())) collect(r, c, ch, out);
+        if (boxes_touch(ch.nodes(), c.nodes())) collect(r, c, ch, out);
     }
 }
 

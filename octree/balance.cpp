@@ -9,12 +9,6 @@
 namespace isodel::octree {
 
 namespace {
-bool touch(const CoordBBox& a, const CoordBBox& b)
-{
-    for (int ax = 0; ax < 3; ++ax)
-        if (a.max()[ax] < b.min()[ax] || b.max()[ax] < a.min()[ax]) return false;
-    return true;
-}
 
 bool overlaps(const CoordBBox& cells, const CellId& b) // unit-cell box vs cell b
 {
@@ -50,7 +44,7 @@ void visit(const AdaptiveGrid::Reader& r, const CoordBBox& cells, const CellId& 
     for (int m = 0; m < 8; ++m) {
         const CellId ch{b.origin.offsetBy((m & 1) * h, ((m >> 1) & 1) * h, ((m >> 2) & 1) * h),
                         b.level - 1};
-        if (touch(ch.nodes(), cn)) visit(r, cells, c, ch, stop_at, best);
+        if (boxes_touch(ch.nodes(), cn)) visit(r, cells, c, ch, stop_at, best);
     }
 }
 } // namespace

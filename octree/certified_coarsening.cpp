@@ -130,7 +130,7 @@ std::vector<CellId> level_candidates(const AdaptiveGrid& g, int l)
     return out;
 }
 
-void check_interrupt(Interrupter* intr, int percent)
+void check_coarsening_interrupt(Interrupter* intr, int percent)
 {
     if (intr && intr->wasInterrupted(percent)) throw Cancelled("adaptive grid: interrupted");
 }
@@ -141,7 +141,7 @@ void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const SampleFie
                        const CoarseningBudget& budget, const std::array<double, 3>& edges, Interrupter* intr)
 {
     for (int l = 1; l <= budget.max_level; ++l) {
-        check_interrupt(intr, 40 * l / std::max(1, budget.max_level));
+        check_coarsening_interrupt(intr, 40 * l / std::max(1, budget.max_level));
         const auto cand = level_candidates(g, l);
         std::vector<char> ok(cand.size(), 0);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.size(), 64),
@@ -334,7 +334,7 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
     // Repair rounds: check the certificate on the continuous interpolant, split around failures.
     const double round_bound = split_potential(g) + 1;
     for (;;) {
-        check_interrupt(intr, 50);
+        check_coarsening_interrupt(intr, 50);
         out.resampled = resample_dense(g, fine.grid());
         SampleField& coarse = out.field.emplace(out.resampled, fine.isovalue(), fine.inside());
         coarse.set_effective_isovalue(fine.effective_isovalue());

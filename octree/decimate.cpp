@@ -19,7 +19,7 @@
 namespace isodel::octree {
 
 namespace {
-void check_interrupt(Interrupter* intr, int percent)
+void check_decimate_interrupt(Interrupter* intr, int percent)
 {
     if (intr && intr->wasInterrupted(percent)) throw Cancelled("decimate: interrupted");
 }
@@ -222,7 +222,7 @@ DecimateResult decimate(const openvdb::FloatGrid& grid, const DecimateOptions& o
     const double T = opt.tolerance;
 
     for (int l = 1; l <= opt.max_level; ++l) {
-        check_interrupt(intr, 80 * l / std::max(1, opt.max_level));
+        check_decimate_interrupt(intr, 80 * l / std::max(1, opt.max_level));
         const auto cand = parent_candidates(ag, l);
         const auto prot_l = coarsen_protected(*prot, l);
         std::vector<char> ok(cand.size(), 0);
@@ -246,7 +246,7 @@ DecimateResult decimate(const openvdb::FloatGrid& grid, const DecimateOptions& o
 
     // Hanging-node constraints may push the continuous interpolant past T: split and rebalance.
     for (;;) {
-        check_interrupt(intr, 90);
+        check_decimate_interrupt(intr, 90);
         std::vector<CellId> over;
         measure_max_error(ag, grid, T, &over);
         if (over.empty()) break;

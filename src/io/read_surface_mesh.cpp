@@ -2,6 +2,8 @@
 // tests. Polygons are fan-triangulated; STL's triangle soup is welded by exact vertex position.
 #include "atomic_file.h"
 
+#include "dense_volume.h"
+
 #include <isodel/errors.h>
 #include <isodel/surface_mesh.h>
 
@@ -16,13 +18,12 @@
 namespace isodel {
 namespace {
 
-[[noreturn]] void bad(const std::string& path, const std::string& what) { throw InvalidInput(path + ": " + what); }
 
 void add_polygon(const std::string& path, SurfaceMesh& m, const std::vector<long long>& poly)
 {
-    if (poly.size() < 3) bad(path, "face with fewer than 3 vertices");
+    if (poly.size() < 3) io::invalid(path, "face with fewer than 3 vertices");
     for (long long i : poly)
-        if (i < 0 || i >= (long long)m.vertices.size()) bad(path, "face refers to missing vertex " + std::to_string(i));
+        if (i < 0 || i >= (long long)m.vertices.size()) io::invalid(path, "face refers to missing vertex " + std::to_string(i));
     for (std::size_t k = 1; k + 1 < poly.size(); ++k)
         m.triangles.push_back({std::int32_t(poly[0]), std::int32_t(poly[k]), std::int32_t(poly[k + 1])});
 }
@@ -43,14 +44,14 @@ int ply_size(const std::string& path, const std::string& t)
     if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
     if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
     if (t == "double" || t == "float64") return 8;
-    bad(path, "unknown PLY property type '" + t + "'");
+    io::invalid(path, "unknown PLY property type '" + t + "'");
 }
 
 double ply_binary(std::istream& in, const std::string& t, bool big, const std::string& path)
 {
     unsigned char b[8];
     const int n = ply_size(path, t);
-    if (!in.read(reinterpret_cast<char*>(b), n)) bad(path, "truncated PLY data");
+    if (!in.read(reinterpret_cast<char*>(b), n)) io::invalid(path, "truncated PLY data");
     if (big) std::reverse(b, b + n);
     auto as = [&](auto v) { std::memcpy(&v, b, sizeof(v)); return double(v); };
     if (t == "char" || t == "int8") return as(std::int8_t());
@@ -67,7 +68,7 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in)
 {
     std::string line, format;
     std::getline(in, line);
-    if (line.rfind("ply", 0) != 0) bad(path, "wrong magic number: a PLY file starts with 'ply'");
+    if (line.rfind("ply", 0) != 0) io::invalid(path, "wrong magic number: a PLY file starts with 'ply'");
     std::vector<PlyElement> elems;
     while (std::getline(in, line)) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -77,7 +78,7 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in)
         if (w == "format") s >> format;
         else if (w == "element") { elems.emplace_back(); s >> elems.back().name >> elems.back().count; }
         else if (w == "property") {
-            if (elems.empty()) bad(path, "PLY property before any element");
+            if (elems.empty()) io::invalid(path, "PLY property before any element");
             PlyProp p;
             s >> p.type;
             if (p.type == "list") s >> p.count_type >> p.type;
@@ -86,7 +87,7 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in)
         } else if (w == "end_header") break;
     }
     if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-        bad(path, "unsupported PLY format '" + format + "'");
+        io::invalid(path, "unsupported PLY format '" + format + "'");
     const bool ascii = format == "ascii", big = format == "binary_big_endian";
     SurfaceMesh m;
     for (const auto& e : elems) {
@@ -97,7 +98,7 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in)
                 auto read1 = [&](const std::string& t) {
                     if (!ascii) return ply_binary(in, t, big, path);
                     double x;
-                    if (!(in >> x)) bad(path, "truncated PLY data");
+                    if (!(in >> x)) io::invalid(path, "truncated PLY data");
                     return x;
                 };
                 if (!p.count_type.empty()) {
@@ -131,7 +132,7 @@ SurfaceMesh read_obj(const std::string& path, std::istream& in)
         s >> w;
         if (w == "v") {
             std::array<double, 3> v;
-            if (!(s >> v[0] >> v[1] >> v[2])) bad(path, "malformed vertex line '" + line + "'");
+            if (!(s >> v[0] >> v[1] >> v[2])) io::invalid(path, "malformed vertex line '" + line + "'");
             m.vertices.push_back(v);
         } else if (w == "f") {
             std::vector<long long> poly;
@@ -152,19 +153,19 @@ SurfaceMesh read_off(const std::string& path, std::istream& in)
     for (std::string line; std::getline(in, line);) body << line.substr(0, line.find('#')) << '\n';
     std::string magic;
     body >> magic;
-    if (magic != "OFF") bad(path, "wrong magic number: an OFF file starts with 'OFF'");
+    if (magic != "OFF") io::invalid(path, "wrong magic number: an OFF file starts with 'OFF'");
     long long nv, nf, ne;
-    if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0) bad(path, "malformed OFF counts");
+    if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0) io::invalid(path, "malformed OFF counts");
     SurfaceMesh m;
     m.vertices.resize(std::size_t(nv));
     for (auto& v : m.vertices)
-        if (!(body >> v[0] >> v[1] >> v[2])) bad(path, "truncated OFF vertices");
+        if (!(body >> v[0] >> v[1] >> v[2])) io::invalid(path, "truncated OFF vertices");
     for (long long f = 0; f < nf; ++f) {
         long long n;
-        if (!(body >> n)) bad(path, "truncated OFF faces");
+        if (!(body >> n)) io::invalid(path, "truncated OFF faces");
         std::vector<long long> poly(std::size_t(std::max(0LL, n)));
         for (auto& i : poly)
-            if (!(body >> i)) bad(path, "truncated OFF faces");
+            if (!(body >> i)) io::invalid(path, "truncated OFF faces");
         std::string rest;
         add_polygon(path, m, poly);
     }
@@ -184,7 +185,7 @@ SurfaceMesh read_stl(const std::string& path, std::istream& in, std::uint64_t si
         if (binary) {
             for (std::uint32_t t = 0; t < n; ++t) {
                 char rec[50];
-                if (!in.read(rec, 50)) bad(path, "truncated STL data");
+                if (!in.read(rec, 50)) io::invalid(path, "truncated STL data");
                 for (int k = 0; k < 3; ++k) {
                     float v[3];
                     std::memcpy(v, rec + 12 + 12 * k, 12);
@@ -198,14 +199,14 @@ SurfaceMesh read_stl(const std::string& path, std::istream& in, std::uint64_t si
         in.seekg(0);
         std::string w;
         in >> w;
-        if (w != "solid") bad(path, "neither a binary STL (size mismatch) nor an ASCII STL ('solid')");
+        if (w != "solid") io::invalid(path, "neither a binary STL (size mismatch) nor an ASCII STL ('solid')");
         while (in >> w)
             if (w == "vertex") {
                 std::array<double, 3> v;
-                if (!(in >> v[0] >> v[1] >> v[2])) bad(path, "malformed STL vertex");
+                if (!(in >> v[0] >> v[1] >> v[2])) io::invalid(path, "malformed STL vertex");
                 soup.push_back(v);
             }
-        if (soup.size() % 3) bad(path, "STL facet without three vertices");
+        if (soup.size() % 3) io::invalid(path, "STL facet without three vertices");
     }
     SurfaceMesh m;
     std::map<std::array<double, 3>, std::int32_t> index;
@@ -237,11 +238,11 @@ SurfaceMesh read_surface_mesh(const std::string& path)
         if (ext == ".off") return read_off(path, in);
         if (ext == ".stl") return read_stl(path, in, size);
     } catch (const std::invalid_argument&) {
-        bad(path, "malformed number");
+        io::invalid(path, "malformed number");
     } catch (const std::out_of_range&) {
-        bad(path, "number out of range");
+        io::invalid(path, "number out of range");
     }
-    bad(path, "unknown surface mesh extension '" + ext + "' (expected .ply, .obj, .off or .stl)");
+    io::invalid(path, "unknown surface mesh extension '" + ext + "' (expected .ply, .obj, .off or .stl)");
 }
 
 } // namespace isodel

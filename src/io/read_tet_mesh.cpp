@@ -1,6 +1,8 @@
 // Reader for Medit .mesh tetrahedral meshes (the format isodel mesh --tets writes, and most FEM
 // tools read): Vertices, Triangles and Tetrahedra sections with their refs; other sections are
 // skipped. Used by isodel verify --tets, which must not trust the writer.
+#include "dense_volume.h"
+
 #include <isodel/errors.h>
 #include <isodel/surface_mesh.h>
 
@@ -8,20 +10,12 @@
 #include <sstream>
 
 namespace isodel {
-namespace {
-
-[[noreturn]] void bad(const std::string& path, const std::string& what)
-{
-    throw InvalidInput(path + ": " + what);
-}
-
-} // namespace
 
 TetMesh read_tet_mesh(const std::string& path)
 {
     const auto dot = path.find_last_of('.');
     if (dot == std::string::npos || path.substr(dot) != ".mesh")
-        bad(path, "isodel verify reads tetrahedral meshes in Medit .mesh format");
+        io::invalid(path, "isodel verify reads tetrahedral meshes in Medit .mesh format");
     std::ifstream in(path);
     if (!in) throw IoError(path + ": cannot open");
     TetMesh m;
@@ -29,11 +23,11 @@ TetMesh read_tet_mesh(const std::string& path)
     bool have_vertices = false;
     auto count = [&](const char* section) {
         long long n = -1;
-        if (!(in >> n) || n < 0) bad(path, std::string("bad count in section ") + section);
+        if (!(in >> n) || n < 0) io::invalid(path, std::string("bad count in section ") + section);
         return std::size_t(n);
     };
     auto index = [&](long long i, std::size_t nv) {
-        if (i < 1 || std::size_t(i) > nv) bad(path, "vertex index " + std::to_string(i) + " out of range");
+        if (i < 1 || std::size_t(i) > nv) io::invalid(path, "vertex index " + std::to_string(i) + " out of range");
         return std::int32_t(i - 1);
     };
     while (in >> word) {
@@ -45,35 +39,35 @@ TetMesh read_tet_mesh(const std::string& path)
             m.vertices.resize(n);
             for (auto& v : m.vertices) {
                 long long ref;
-                if (!(in >> v[0] >> v[1] >> v[2] >> ref)) bad(path, "truncated Vertices section");
+                if (!(in >> v[0] >> v[1] >> v[2] >> ref)) io::invalid(path, "truncated Vertices section");
             }
             have_vertices = true;
         } else if (word == "Triangles") {
-            if (!have_vertices) bad(path, "Triangles before Vertices");
+            if (!have_vertices) io::invalid(path, "Triangles before Vertices");
             const std::size_t n = count("Triangles");
             m.triangles.resize(n);
             for (auto& t : m.triangles) {
                 long long a, b, c, ref;
-                if (!(in >> a >> b >> c >> ref)) bad(path, "truncated Triangles section");
+                if (!(in >> a >> b >> c >> ref)) io::invalid(path, "truncated Triangles section");
                 t = {index(a, m.vertices.size()), index(b, m.vertices.size()), index(c, m.vertices.size())};
             }
         } else if (word == "Tetrahedra") {
-            if (!have_vertices) bad(path, "Tetrahedra before Vertices");
+            if (!have_vertices) io::invalid(path, "Tetrahedra before Vertices");
             const std::size_t n = count("Tetrahedra");
             m.tets.resize(n);
             m.tet_region.resize(n);
             for (std::size_t i = 0; i < n; ++i) {
                 long long a, b, c, d, ref;
-                if (!(in >> a >> b >> c >> d >> ref)) bad(path, "truncated Tetrahedra section");
+                if (!(in >> a >> b >> c >> d >> ref)) io::invalid(path, "truncated Tetrahedra section");
                 const std::size_t nv = m.vertices.size();
                 m.tets[i] = {index(a, nv), index(b, nv), index(c, nv), index(d, nv)};
                 m.tet_region[i] = std::int32_t(ref);
             }
         } else {
-            bad(path, "unsupported Medit section '" + word + "'");
+            io::invalid(path, "unsupported Medit section '" + word + "'");
         }
     }
-    if (m.tets.empty()) bad(path, "no tetrahedra");
+    if (m.tets.empty()) io::invalid(path, "no tetrahedra");
     return m;
 }
 

@@ -1,6 +1,7 @@
 // Surface mesh writers: PLY (binary little-endian, double coordinates so nothing is rounded),
 // OBJ and OFF (17 significant digits: doubles round-trip exactly), STL (binary; float32 by format).
 #include "atomic_file.h"
+#include "little_endian.h"
 
 #include <isodel/errors.h>
 #include <isodel/surface_mesh.h>
@@ -12,15 +13,6 @@
 namespace isodel {
 namespace {
 
-template <typename T>
-void put(std::ostream& out, T v)
-{
-    // The formats are little-endian; every supported host is too (checked in dense_volume.cpp's
-    // reader path), so the bytes are written as they are in memory.
-    char b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T));
-    out.write(b, sizeof(T));
-}
 
 void write_ply(std::ostream& out, const SurfaceMesh& m)
 {
@@ -28,10 +20,10 @@ void write_ply(std::ostream& out, const SurfaceMesh& m)
         << "element vertex " << m.vertices.size() << "\nproperty double x\nproperty double y\nproperty double z\n"
         << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
     for (const auto& v : m.vertices)
-        for (double c : v) put(out, c);
+        for (double c : v) io::put_little_endian(out, c);
     for (const auto& t : m.triangles) {
-        put<std::uint8_t>(out, 3);
-        for (auto i : t) put<std::int32_t>(out, i);
+        io::put_little_endian<std::uint8_t>(out, 3);
+        for (auto i : t) io::put_little_endian<std::int32_t>(out, i);
     }
 }
 
@@ -54,17 +46,17 @@ void write_stl(std::ostream& out, const SurfaceMesh& m)
     char header[80] = {};
     std::strncpy(header, "binary STL written by isodel", sizeof(header));
     out.write(header, sizeof(header));
-    put<std::uint32_t>(out, std::uint32_t(m.triangles.size()));
+    io::put_little_endian<std::uint32_t>(out, std::uint32_t(m.triangles.size()));
     for (const auto& t : m.triangles) {
         const auto &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
         double n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
                        (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
                        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
         const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (double x : n) put<float>(out, len > 0 ? float(x / len) : 0.0f);
+        for (double x : n) io::put_little_endian<float>(out, len > 0 ? float(x / len) : 0.0f);
         for (const auto* v : {&a, &b, &c})
-            for (double x : *v) put<float>(out, float(x));
-        put<std::uint16_t>(out, 0);
+            for (double x : *v) io::put_little_endian<float>(out, float(x));
+        io::put_little_endian<std::uint16_t>(out, 0);
     }
 }
 

@@ -6,6 +6,7 @@
 // the vertex numbering of TetMesh (1-based where the format is), so vertex i of the surface
 // mesh is vertex i of the tetrahedral mesh.
 #include "atomic_file.h"
+#include "little_endian.h"
 
 #include <isodel/errors.h>
 #include <isodel/surface_mesh.h>
@@ -67,13 +68,6 @@ private:
     std::string buf_;
 };
 
-template <typename T>
-void put(std::ostream& out, T v)
-{
-    char b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T)); // little-endian hosts only, as write_surface_mesh.cpp
-    out.write(b, sizeof(T));
-}
 
 void write_medit(std::ostream& stream, const TetMesh& m)
 {
@@ -110,18 +104,18 @@ void write_vtu(std::ostream& out, const TetMesh& m)
         << "      </Cells>\n      <CellData Scalars=\"region\">\n"
         << "        <DataArray type=\"Int32\" Name=\"region\" format=\"appended\" offset=\"" << off[4] << "\"/>\n"
         << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n_";
-    put(out, sizes[0]);
+    io::put_little_endian(out, sizes[0]);
     for (const auto& v : m.vertices)
-        for (double c : v) put(out, c);
-    put(out, sizes[1]);
+        for (double c : v) io::put_little_endian(out, c);
+    io::put_little_endian(out, sizes[1]);
     for (const auto& t : m.tets)
-        for (auto i : t) put<std::int64_t>(out, i);
-    put(out, sizes[2]);
-    for (std::uint64_t i = 1; i <= nt; ++i) put<std::int64_t>(out, std::int64_t(4 * i));
-    put(out, sizes[3]);
-    for (std::uint64_t i = 0; i < nt; ++i) put<std::uint8_t>(out, 10); // VTK_TETRA
-    put(out, sizes[4]);
-    for (auto r : m.tet_region) put<std::int32_t>(out, r);
+        for (auto i : t) io::put_little_endian<std::int64_t>(out, i);
+    io::put_little_endian(out, sizes[2]);
+    for (std::uint64_t i = 1; i <= nt; ++i) io::put_little_endian<std::int64_t>(out, std::int64_t(4 * i));
+    io::put_little_endian(out, sizes[3]);
+    for (std::uint64_t i = 0; i < nt; ++i) io::put_little_endian<std::uint8_t>(out, 10); // VTK_TETRA
+    io::put_little_endian(out, sizes[4]);
+    for (auto r : m.tet_region) io::put_little_endian<std::int32_t>(out, r);
     out << "\n  </AppendedData>\n</VTKFile>\n";
 }
 

@@ -7,6 +7,7 @@
 // On an adaptive grid the same flow runs with E on leaf edges and G from the leaves
 // (seeding/adaptive_points.h), F read through the grid's exact resampling. The public entry
 // points (and --certify) are mesh_isosurface.cpp.
+#include "surface/stage_clock.h"
 #include "surface/mesh_field.h"
 #include "surface/thread_limit.h"
 
@@ -32,7 +33,6 @@ using namespace mesher;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::size_t peak_memory_bytes()
 {
@@ -106,7 +106,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     // Steps 1-2: E and G (initial_points.h).
     auto t0 = Clock::now();
     InitialPoints ip = initial_points(field, adaptive, leaves.get(), options.snap, snap_radius, run.seeds, st, interrupter);
-    st.seconds["points"] = since(t0);
+    st.seconds["points"] = seconds_since(t0);
     if (st.e_points == 0 && run.inserted) return result; // a block Sigma misses
     if (st.e_points == 0) throw InvalidInput("the level set is empty: no grid edge crosses the isovalue");
 
@@ -121,7 +121,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     const auto first_inserted = std::uint32_t(ip.points.size());
     ip.points.clear();
     ip.points.shrink_to_fit();
-    st.seconds["delaunay"] = since(t0);
+    st.seconds["delaunay"] = seconds_since(t0);
 
     // Steps 4-5: the closed ball property, then eps refinement (refiner.h).
     RefinerInput in;
@@ -138,13 +138,13 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     Refiner refiner(dt, in, std::move(ip.crossed_cells), options, st, first_inserted, interrupter);
     t0 = Clock::now();
     refiner.measure_voxel_bound();
-    st.seconds["voxel_bound"] = since(t0);
+    st.seconds["voxel_bound"] = seconds_since(t0);
     const std::size_t n_before_loops = st.n_topology + st.n_geometry;
     refiner.run(run.inserted != nullptr);
     if (!run.seeds.empty()) st.partition.seam_points = st.n_topology + st.n_geometry - n_before_loops;
     if (run.inserted) {
         collect_block_points(dt, first_inserted, *run.inserted);
-        st.seconds["total"] = since(t_start);
+        st.seconds["total"] = seconds_since(t_start);
         return result;
     }
 
@@ -155,7 +155,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     st.vertices = result.surface.vertices.size();
     st.triangles = result.surface.triangles.size();
     st.components = surface_topology(result.surface);
-    st.seconds["extract"] = since(t_extract);
+    st.seconds["extract"] = seconds_since(t_extract);
     if (options.tets != TetRegion::None) {
         // DELVOLMESH (Section 4.1): fill the region(s) with G', keeping M (src/volume/volume_mesh.h).
         t0 = Clock::now();
@@ -168,9 +168,9 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         vp.adaptive = leaves.get();
         vp.improve = options.improve_tets;
         result.tets = build_volume_mesh(dt, refiner.cache(), field, ip.g_mask.get(), result.surface, vp, st.tets);
-        st.seconds["tets"] = since(t0);
+        st.seconds["tets"] = seconds_since(t0);
     }
-    st.seconds["total"] = since(t_start);
+    st.seconds["total"] = seconds_since(t_start);
     st.peak_memory_bytes = peak_memory_bytes();
     return result;
 }

@@ -2,6 +2,7 @@
 // in, read as a SampleField; the run itself is mesh_field (mesh_field.cpp), or partitioned
 // meshing's blocks and merge (partitioned_meshing.h); with MeshOptions::certify the surface is
 // verified before it is returned.
+#include "surface/stage_clock.h"
 #include "surface/final_points.h"
 #include "surface/mesh_field.h"
 #include "surface/partitioned_meshing.h"
@@ -26,7 +27,6 @@ using namespace mesher;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 MeshResult mesh_once(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
                      const MeshOptions& options, Interrupter* interrupter, std::vector<std::array<double, 3>>* points)
@@ -81,7 +81,7 @@ void certify_against(const openvdb::FloatGrid& grid, Inside inside, double eps, 
                                 "too close to v for the verifier's refinements); the surface cannot be certified");
     if (!rep.passed()) throw GuaranteeViolated("certify: the mesh does not verify: " + verify_failure(rep));
     r.stats.certify_attempts = 1;
-    r.stats.seconds["certify"] = since(t0);
+    r.stats.seconds["certify"] = seconds_since(t0);
     r.stats.seconds["total"] += r.stats.seconds["certify"];
 }
 
@@ -118,7 +118,7 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
     octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
     const octree::SampleField& coarse = *cg.field; // the coarse field, at the input's v*
-    const double t_grid = since(t0);
+    const double t_grid = seconds_since(t0);
 
     MeshOptions mo = options;
     mo.adaptive = false;
@@ -198,7 +198,7 @@ MeshResult mesh_isosurface(const AdaptiveVolume& volume, const MeshOptions& opti
     const auto t0 = Clock::now();
     const octree::AdaptiveGrid g = octree::to_adaptive_grid(volume);
     const openvdb::FloatGrid::Ptr dense = octree::resample_dense(g);
-    const double t_resample = since(t0);
+    const double t_resample = seconds_since(t0);
     MeshResult r = mesh_grid(*dense, g.max_level() > 0 ? &g : nullptr, options, interrupter);
     r.stats.seconds["resample"] = t_resample;
     r.stats.seconds["total"] += t_resample;

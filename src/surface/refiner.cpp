@@ -1,3 +1,4 @@
+#include "surface/stage_clock.h"
 #include "surface/refiner.h"
 
 #include "closed_ball/grid_cell_check.h"
@@ -16,13 +17,12 @@ namespace isodel::mesher {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// Adds the seconds of its scope to \p total (MeshStats::refinement_seconds).
 struct StepTimer {
     double& total;
     Clock::time_point t0 = Clock::now();
-    ~StepTimer() { total += since(t0); }
+    ~StepTimer() { total += seconds_since(t0); }
 };
 
 bool by_id(Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; }
@@ -185,7 +185,7 @@ ViolationReport Refiner::grid_cells_and_facets(double& update_seconds)
             cache_.update(dt_, *in_.field, max_cells_walk_);
             unbounded = !cache_.flagged().overflow.empty();
         }
-        update_seconds = since(t0);
+        update_seconds = seconds_since(t0);
         // Then: voxel-bound holes, Theorem 3 again, the ViolationFinder's classes.
         StepTimer timer{steps["grid_cells"]};
         if (!unbounded) rep.candidates = grid_cell_violations(dt_, *in_.field, grid_pending_, max_cells_walk_);
@@ -205,8 +205,8 @@ ViolationReport Refiner::facet_loops()
     const auto t0 = Clock::now();
     ViolationReport rep;
     rep.candidates = loops_.scan(dt_, *in_.field, max_cells_walk_);
-    st_.refinement_seconds["facet_loops"] += since(t0);
-    log("  loops %.2f ms", 1e3 * since(t0));
+    st_.refinement_seconds["facet_loops"] += seconds_since(t0);
+    log("  loops %.2f ms", 1e3 * seconds_since(t0));
     filter_candidates(rep.candidates, in_.keep);
     if (!rep.candidates.empty()) rep.kind = Violation::FacetLoop;
     return rep;
@@ -219,8 +219,8 @@ ViolationReport Refiner::cell_disks()
     ViolationReport rep;
     VoronoiCellDiskStats ds;
     rep.candidates = voronoi_cell_disk_violations(dt_, *in_.field, disk_pending_, in_.slab_h_world, &ds);
-    st_.refinement_seconds["cell_disks"] += since(t0);
-    log("  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated", 1e3 * since(t0), ds.certified,
+    st_.refinement_seconds["cell_disks"] += seconds_since(t0);
+    log("  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated", 1e3 * seconds_since(t0), ds.certified,
         ds.sampled, ds.unresolved, rep.candidates.size());
     filter_candidates(rep.candidates, in_.keep);
     if (!rep.candidates.empty()) rep.kind = Violation::VoronoiCellDisk;
@@ -234,14 +234,14 @@ ViolationReport Refiner::hausdorff_distances()
     ViolationReport rep;
     const std::vector<const FacetCache::Entry*> restricted = restricted_facets();
     rep.candidates = hausdorff_.violations(restricted);
-    steps["hausdorff"] += since(t0);
-    log("  hausdorff %.2f ms", 1e3 * since(t0));
+    steps["hausdorff"] += seconds_since(t0);
+    log("  hausdorff %.2f ms", 1e3 * seconds_since(t0));
     filter_candidates(rep.candidates, in_.keep);
     if (rep.candidates.empty()) {
         const auto tc = Clock::now();
         rep.candidates = hausdorff_.crease_violations(restricted);
-        steps["creases"] += since(tc);
-        log("  crease %.2f ms", 1e3 * since(tc));
+        steps["creases"] += seconds_since(tc);
+        log("  crease %.2f ms", 1e3 * seconds_since(tc));
         filter_candidates(rep.candidates, in_.keep);
     }
     if (!rep.candidates.empty()) rep.kind = Violation::Hausdorff;
@@ -314,7 +314,7 @@ void Refiner::run(bool stop_without_progress)
             rep = (this->*check)();
         }
         if (rep.kind == Violation::None) {
-            t_refine += since(tr); // the last round: every check passed
+            t_refine += seconds_since(tr); // the last round: every check passed
             break;
         }
         if (rep.kind == Violation::Unbounded) {
@@ -325,17 +325,17 @@ void Refiner::run(bool stop_without_progress)
                         if (v->info().on_surface()) over_bound_.push_back(v);
             if (st_.bound_repairs > 10 * st_.g_points + 1000)
                 throw GuaranteeViolated("voxel bound repairs did not converge (bound: 10 |G| + 1000 grid points)");
-            t_topology += since(tr);
+            t_topology += seconds_since(tr);
             continue;
         }
-        const double t_checks = since(tr) - t_update;
+        const double t_checks = seconds_since(tr) - t_update;
         const double insertion_before = steps["insertion"];
         const InsertionResult ins = insert_batch(rep.candidates, rep.kind);
         const double t_insert = steps["insertion"] - insertion_before;
         const std::size_t cascade = rep.kind == Violation::VoronoiEdge ? follow_voronoi_edge_cascade() : 0;
-        (geometric(rep.kind) ? t_refine : t_topology) += since(tr);
+        (geometric(rep.kind) ? t_refine : t_topology) += seconds_since(tr);
         log("round %d: %s %zu inserted (+%zu cascade), %.2f ms (update %.2f, checks %.2f, insert %.2f)", st_.rounds,
-            to_string(rep.kind), ins.inserted.size(), cascade, 1e3 * since(tr), 1e3 * t_update, 1e3 * t_checks,
+            to_string(rep.kind), ins.inserted.size(), cascade, 1e3 * seconds_since(tr), 1e3 * t_update, 1e3 * t_checks,
             1e3 * t_insert);
         if (st_.n_geometry + st_.n_topology > max_points_) {
             std::ostringstream os;
