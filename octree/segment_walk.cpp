@@ -8,14 +8,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace isodel::octree {
 namespace {
 
-Coord cell_of(const Vec3d& p)
+/// floor(x) as a cell index. Points beyond the int range (a far circumcentre of a flat tet) and
+/// NaN map to the lowest index: a cell far outside every domain, where phi is the constant
+/// outside value (sample_field.h), which is what the query needs; converting them directly
+/// would be undefined behaviour.
+int cell_index(double x)
 {
-    return Coord(int(std::floor(p[0])), int(std::floor(p[1])), int(std::floor(p[2])));
+    const double f = std::floor(x);
+    constexpr double lo = double(std::numeric_limits<int>::min()), hi = double(std::numeric_limits<int>::max());
+    return f >= lo && f <= hi ? int(f) : std::numeric_limits<int>::min();
 }
+
+Coord cell_of(const Vec3d& p) { return Coord(cell_index(p[0]), cell_index(p[1]), cell_index(p[2])); }
 
 /// Real roots of q(t) = c0 + c1 t + c2 t^2 in (lo, hi), sorted.
 int quadratic_roots_in(double c0, double c1, double c2, double lo, double hi, double out[2])

@@ -138,7 +138,10 @@ TEST_CASE("verify: a non-Delaunay edge flip is caught", "[verify]")
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) h[std::size_t(v->info())] = v;
     const auto edges = edge_triangles(s.mesh);
     bool flipped = false;
-    for (const auto& [e, tris] : edges) {
+    for (const auto& edge_and_triangles : edges) {
+        // Not a structured binding: C++17 lambdas cannot capture those (Clang refuses).
+        const auto& e = edge_and_triangles.first;
+        const auto& tris = edge_and_triangles.second;
         if (tris.size() != 2) continue;
         auto opposite = [&](std::size_t f) {
             for (auto v : s.mesh.triangles[f])
