@@ -64,7 +64,11 @@ void CellRefiner::sample(const octree::SampleField::Reader& reader, const Coord&
         const auto& off = offset_[std::size_t(a)];
         const std::int64_t slab = std::int64_t(cell[a] - base_[a]);
         const std::int64_t last = std::int64_t(off.size()) - 1;
-        g_[std::size_t(a)] = slab <= last ? off[std::size_t(slab)] : off[std::size_t(last)] + (slab - last) * R_;
+        // Cells before the first slab or past the last (the ring around the lattice) continue the
+        // plane numbering with R planes per cell; only slabs in [0, last] have an offset stored.
+        if (slab < 0) g_[std::size_t(a)] = off[0] + slab * R_;
+        else if (slab <= last) g_[std::size_t(a)] = off[std::size_t(slab)];
+        else g_[std::size_t(a)] = off[std::size_t(last)] + (slab - last) * R_;
         auto& t = t_[std::size_t(a)];
         t.clear();
         for (int k = 0; k <= R_; ++k) t.push_back(double(k) / R_);
