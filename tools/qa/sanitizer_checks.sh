@@ -27,7 +27,10 @@ ctest --test-dir "${prefix}asan" -L "asan|fuzz" --output-on-failure -j "$jobs"
 # from Debian's source package, fetched through a private apt list (the system's is untouched).
 # Its headers are the installed ones (same release), so the build compiles as usual; at run time
 # LD_LIBRARY_PATH puts the instrumented libtbb in front of the system's, for OpenVDB too.
-tbb="$here/${prefix}tsan-tbb"
+case "$prefix" in
+  /*) tbb="${prefix}tsan-tbb" ;;
+  *) tbb="$here/${prefix}tsan-tbb" ;;
+esac
 if [ ! -f "$tbb/install/lib/libtbb.so.12" ]; then
   rm -rf "$tbb" && mkdir -p "$tbb/apt/lists/partial" "$tbb/src"
   codename=$(. /etc/os-release && echo "$VERSION_CODENAME")
