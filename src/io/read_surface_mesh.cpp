@@ -8,6 +8,7 @@
 #include <isodel/surface_mesh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -156,6 +157,10 @@ SurfaceMesh read_off(const std::string& path, std::istream& in)
     if (magic != "OFF") io::invalid(path, "wrong magic number: an OFF file starts with 'OFF'");
     long long nv, nf, ne;
     if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0) io::invalid(path, "malformed OFF counts");
+    // A vertex needs at least 6 bytes ("0 0 0 "): a count the file cannot hold is refused before
+    // anything is allocated for it.
+    if (std::uint64_t(nv) > body.str().size() / 6)
+        io::invalid(path, "OFF header announces " + std::to_string(nv) + " vertices, more than the file can hold");
     SurfaceMesh m;
     m.vertices.resize(std::size_t(nv));
     for (auto& v : m.vertices)
@@ -232,17 +237,24 @@ SurfaceMesh read_surface_mesh(const std::string& path)
     const auto size = std::uint64_t(in.tellg());
     in.seekg(0);
     const std::string ext = io::extension_of(path);
+    SurfaceMesh m;
     try {
-        if (ext == ".ply") return read_ply(path, in);
-        if (ext == ".obj") return read_obj(path, in);
-        if (ext == ".off") return read_off(path, in);
-        if (ext == ".stl") return read_stl(path, in, size);
+        if (ext == ".ply") m = read_ply(path, in);
+        else if (ext == ".obj") m = read_obj(path, in);
+        else if (ext == ".off") m = read_off(path, in);
+        else if (ext == ".stl") m = read_stl(path, in, size);
+        else io::invalid(path, "unknown surface mesh extension '" + ext + "' (expected .ply, .obj, .off or .stl)");
     } catch (const std::invalid_argument&) {
         io::invalid(path, "malformed number");
     } catch (const std::out_of_range&) {
         io::invalid(path, "number out of range");
     }
-    io::invalid(path, "unknown surface mesh extension '" + ext + "' (expected .ply, .obj, .off or .stl)");
+    // Every format can spell NaN or infinity (text "nan", binary bit patterns); the verifier's
+    // exact predicates need finite points.
+    for (std::size_t i = 0; i < m.vertices.size(); ++i)
+        for (double c : m.vertices[i])
+            if (!std::isfinite(c)) io::invalid(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    return m;
 }
 
 } // namespace isodel

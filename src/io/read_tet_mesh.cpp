@@ -6,6 +6,8 @@
 #include <isodel/errors.h>
 #include <isodel/surface_mesh.h>
 
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -21,9 +23,15 @@ TetMesh read_tet_mesh(const std::string& path)
     TetMesh m;
     std::string word;
     bool have_vertices = false;
-    auto count = [&](const char* section) {
+    // A section of n entries of k numbers needs at least 2k bytes per entry ("0 "): a count the
+    // file cannot hold is refused before anything is allocated for it.
+    const std::uint64_t file_bytes = io::file_size_or_throw(path);
+    auto count = [&](const char* section, int numbers_per_entry) {
         long long n = -1;
         if (!(in >> n) || n < 0) io::invalid(path, std::string("bad count in section ") + section);
+        if (std::uint64_t(n) > file_bytes / std::uint64_t(2 * numbers_per_entry))
+            io::invalid(path, std::string("section ") + section + " announces " + std::to_string(n) +
+                                  " entries, more than the file's " + std::to_string(file_bytes) + " bytes can hold");
         return std::size_t(n);
     };
     auto index = [&](long long i, std::size_t nv) {
@@ -35,16 +43,18 @@ TetMesh read_tet_mesh(const std::string& path)
         if (word == "MeshVersionFormatted" || word == "Dimension") {
             in >> word;
         } else if (word == "Vertices") {
-            const std::size_t n = count("Vertices");
+            const std::size_t n = count("Vertices", 4);
             m.vertices.resize(n);
             for (auto& v : m.vertices) {
                 long long ref;
                 if (!(in >> v[0] >> v[1] >> v[2] >> ref)) io::invalid(path, "truncated Vertices section");
+                if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+                    io::invalid(path, "non-finite vertex coordinate");
             }
             have_vertices = true;
         } else if (word == "Triangles") {
             if (!have_vertices) io::invalid(path, "Triangles before Vertices");
-            const std::size_t n = count("Triangles");
+            const std::size_t n = count("Triangles", 4);
             m.triangles.resize(n);
             for (auto& t : m.triangles) {
                 long long a, b, c, ref;
@@ -53,7 +63,7 @@ TetMesh read_tet_mesh(const std::string& path)
             }
         } else if (word == "Tetrahedra") {
             if (!have_vertices) io::invalid(path, "Tetrahedra before Vertices");
-            const std::size_t n = count("Tetrahedra");
+            const std::size_t n = count("Tetrahedra", 5);
             m.tets.resize(n);
             m.tet_region.resize(n);
             for (std::size_t i = 0; i < n; ++i) {
