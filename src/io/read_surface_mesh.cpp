@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -151,7 +152,12 @@ SurfaceMesh read_off(const std::string& path, std::istream& in)
 {
     // Comments may appear anywhere; strip them, then read the token stream.
     std::stringstream body;
-    for (std::string line; std::getline(in, line);) body << line.substr(0, line.find('#')) << '\n';
+    std::uint64_t body_bytes = 0;
+    for (std::string line; std::getline(in, line);) {
+        const std::string kept = line.substr(0, line.find('#'));
+        body << kept << '\n';
+        body_bytes += kept.size() + 1;
+    }
     std::string magic;
     body >> magic;
     if (magic != "OFF") io::invalid(path, "wrong magic number: an OFF file starts with 'OFF'");
@@ -159,7 +165,7 @@ SurfaceMesh read_off(const std::string& path, std::istream& in)
     if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0) io::invalid(path, "malformed OFF counts");
     // A vertex needs at least 6 bytes ("0 0 0 "): a count the file cannot hold is refused before
     // anything is allocated for it.
-    if (std::uint64_t(nv) > body.str().size() / 6)
+    if (std::uint64_t(nv) > body_bytes / 6)
         io::invalid(path, "OFF header announces " + std::to_string(nv) + " vertices, more than the file can hold");
     SurfaceMesh m;
     m.vertices.resize(std::size_t(nv));

@@ -18,14 +18,14 @@ TetMesh read_tet_mesh(const std::string& path)
     const auto dot = path.find_last_of('.');
     if (dot == std::string::npos || path.substr(dot) != ".mesh")
         io::invalid(path, "isodel verify reads tetrahedral meshes in Medit .mesh format");
+    // A section of n entries of k numbers needs at least 2k bytes per entry ("0 "): a count the
+    // file cannot hold is refused before anything is allocated for it.
+    const std::uint64_t file_bytes = io::file_size_or_throw(path);
     std::ifstream in(path);
     if (!in) throw IoError(path + ": cannot open");
     TetMesh m;
     std::string word;
     bool have_vertices = false;
-    // A section of n entries of k numbers needs at least 2k bytes per entry ("0 "): a count the
-    // file cannot hold is refused before anything is allocated for it.
-    const std::uint64_t file_bytes = io::file_size_or_throw(path);
     auto count = [&](const char* section, int numbers_per_entry) {
         long long n = -1;
         if (!(in >> n) || n < 0) io::invalid(path, std::string("bad count in section ") + section);
