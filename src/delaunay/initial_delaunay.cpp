@@ -1,6 +1,9 @@
 #include "delaunay/initial_delaunay.h"
 
 #include <CGAL/Spatial_lock_grid_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -95,6 +98,10 @@ constexpr std::size_t kParallelMin = 20000;
 // examples); it pays only while the points spread over enough of them.
 constexpr int kLockCells = 50;
 constexpr std::size_t kParallelMinLockCells = 1000;
+// How often the insertion asks whether to stop: a cancel (Ctrl-C in Python) must not wait for
+// the whole triangulation, the largest single step of a run.
+constexpr std::size_t kPollPoints = 1 << 14;
+constexpr std::size_t kParallelRounds = 16;
 
 /// How many cells of the lock grid over \p box hold a point.
 std::size_t occupied_lock_cells(const std::vector<std::pair<Point, VertexInfo>>& points, const CGAL::Bbox_3& box)
@@ -114,14 +121,38 @@ std::size_t occupied_lock_cells(const std::vector<std::pair<Point, VertexInfo>>&
     return std::size_t(std::unique(cells.begin(), cells.end()) - cells.begin());
 }
 
+/// CGAL's sequential insertion of a range (Delaunay_triangulation_3::insert_with_info): the same
+/// spatial sort and the same chain of hints, so the same triangulation stored in the same order,
+/// with \p scope polled every kPollPoints points.
+void insert_sequentially(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points,
+                         const InterruptScope* scope)
+{
+    std::vector<std::size_t> order(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    using PointMap = CGAL::Pointer_property_map<Point>::type;
+    std::vector<Point> xyz;
+    xyz.reserve(points.size());
+    for (const auto& p : points) xyz.push_back(p.first);
+    CGAL::spatial_sort<CGAL::Sequential_tag>(
+        order.begin(), order.end(),
+        CGAL::Spatial_sort_traits_adapter_3<DelaunayTraits, PointMap>(CGAL::make_property_map(xyz), dt.geom_traits()));
+    Vertex_handle hint;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        if (scope && i % kPollPoints == 0) scope->check(i, order.size(), "points");
+        hint = dt.insert(xyz[order[i]], hint);
+        if (hint != Vertex_handle()) hint->info() = points[order[i]].second;
+    }
+}
+
 } // namespace
 
-void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points)
+void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points,
+                            const InterruptScope* scope)
 {
     dt.clear();
     const std::size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
     if (threads < 2 || points.size() < kParallelMin) {
-        dt.insert(points.begin(), points.end());
+        insert_sequentially(dt, points, scope);
         return;
     }
     CGAL::Bbox_3 box = points.front().first.bbox();
@@ -129,11 +160,23 @@ void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, Ver
     if (occupied_lock_cells(points, box) < kParallelMinLockCells) {
         // Sparse data (shapes far apart in a large box): the points fall into a few lock cells,
         // and threads that insert into the same cell only retry each other's work.
-        dt.insert(points.begin(), points.end());
+        insert_sequentially(dt, points, scope);
         return;
     }
+    // In kParallelRounds rounds, polling \p scope between them. A round is a slice of one
+    // spatial sort (BRIO: each slice spreads over the whole box, as the lock grid wants); CGAL
+    // sorts each slice again along its Hilbert curve.
+    std::vector<std::pair<Point, VertexInfo>> sorted = points;
+    CGAL::spatial_sort<CGAL::Parallel_tag>(
+        sorted.begin(), sorted.end(),
+        CGAL::Spatial_sort_traits_adapter_3<DelaunayTraits, CGAL::First_of_pair_property_map<std::pair<Point, VertexInfo>>>());
     ParallelDelaunay::Lock_data_structure locks(box, kLockCells);
-    ParallelDelaunay pdt(points.begin(), points.end(), &locks);
+    ParallelDelaunay pdt(&locks);
+    for (std::size_t round = 0; round < kParallelRounds; ++round) {
+        if (scope) scope->check(round * sorted.size() / kParallelRounds, sorted.size(), "points");
+        pdt.insert(sorted.begin() + std::ptrdiff_t(round * sorted.size() / kParallelRounds),
+                   sorted.begin() + std::ptrdiff_t((round + 1) * sorted.size() / kParallelRounds));
+    }
     dt.set_infinite_vertex(copy_into(pdt, dt));
 }
 

@@ -5,6 +5,8 @@
 // when more than one thread may run.
 #include "delaunay/delaunay.h"
 
+#include <isodel/interrupt.h>
+
 #include <utility>
 #include <vector>
 
@@ -17,6 +19,8 @@ namespace isodel::mesher {
 /// way: CGAL's symbolic perturbation defines Del uniquely even for the cospherical points of
 /// the grid, whatever the order of insertion. What may differ is where cells are stored,
 /// which nothing downstream depends on (vertex ids and facet keys order every result).
-void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points);
+/// \p scope, when given, is polled as the points go in (throws isodel::Cancelled).
+void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points,
+                            const InterruptScope* scope = nullptr);
 
 } // namespace isodel::mesher

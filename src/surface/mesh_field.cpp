@@ -115,7 +115,7 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     Delaunay dt;
     {
         InterruptScope scope(interrupter, "delaunay");
-        build_initial_delaunay(dt, ip.points);
+        build_initial_delaunay(dt, ip.points, &scope);
         scope.check(100);
     }
     const auto first_inserted = std::uint32_t(ip.points.size());

@@ -311,6 +311,7 @@ void Refiner::run(bool stop_without_progress)
             cache_.active_count(), cache_.computed_last_update());
         for (const Check check : kLaterChecks) {
             if (rep.kind != Violation::None) break;
+            scope.check(); // each check may scan every restricted facet
             rep = (this->*check)();
         }
         if (rep.kind == Violation::None) {
@@ -330,6 +331,7 @@ void Refiner::run(bool stop_without_progress)
         }
         const double t_checks = seconds_since(tr) - t_update;
         const double insertion_before = steps["insertion"];
+        scope.check();
         const InsertionResult ins = insert_batch(rep.candidates, rep.kind);
         const double t_insert = steps["insertion"] - insertion_before;
         const std::size_t cascade = rep.kind == Violation::VoronoiEdge ? follow_voronoi_edge_cascade() : 0;

@@ -6,6 +6,9 @@
 // points of a grid (the degenerate case of the protective layer) mixed with grid-edge points.
 #include "delaunay/initial_delaunay.h"
 
+#include <isodel/errors.h>
+#include <isodel/interrupt.h>
+
 #include <catch2/catch.hpp>
 
 #include <tbb/global_control.h>
@@ -13,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace isodel::mesher;
@@ -34,22 +38,20 @@ std::vector<std::array<std::uint32_t, 4>> finite_cells(const Delaunay& dt)
 
 // Into \p dt itself: a returned triangulation could be a deep copy (copy_tds), not the one
 // build_initial_delaunay made.
-void build(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points, int threads)
+void build(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points, int threads,
+           const isodel::InterruptScope* scope = nullptr)
 {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-    build_initial_delaunay(dt, points);
+    build_initial_delaunay(dt, points, scope);
 }
 
-} // namespace
-
-TEST_CASE("the parallel initial Delaunay and its copy equal the sequential one", "[mesher][initial_delaunay]")
+/// A n^3 grid (cospherical points) and 3000 points on its edges, with ids and mixed kinds.
+std::vector<std::pair<Point, VertexInfo>> grid_and_edge_points(int n)
 {
-    // A 28^3 grid (21952 points: above the parallel threshold) and points on grid edges.
     std::vector<std::pair<Point, VertexInfo>> points;
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> t(0.05, 0.95);
-    std::uniform_int_distribution<int> cell(0, 26);
-    const int n = 28;
+    std::uniform_int_distribution<int> cell(0, n - 2);
     for (int x = 0; x < n; ++x)
         for (int y = 0; y < n; ++y)
             for (int z = 0; z < n; ++z) points.push_back({Point(0.5 * x, 0.5 * y, 0.5 * z), VertexInfo{}});
@@ -63,7 +65,28 @@ TEST_CASE("the parallel initial Delaunay and its copy equal the sequential one",
         points[i].second.id = std::uint32_t(i);
         points[i].second.kind = i % 3 == 0 ? PointKind::Grid : i % 3 == 1 ? PointKind::Edge : PointKind::Topology;
     }
+    return points;
+}
 
+/// Records the Delaunay stage's polls; cancels at the \p cancel_at-th when it is non-zero.
+struct PollCounter final : isodel::Interrupter {
+    std::vector<std::uint64_t> done;
+    std::uint64_t total = 0;
+    std::size_t cancel_at = 0;
+    bool progress(std::uint64_t d, std::uint64_t t, const char* unit) override
+    {
+        CHECK(std::string(unit) == "points");
+        done.push_back(d);
+        total = t;
+        return cancel_at != 0 && done.size() >= cancel_at;
+    }
+};
+
+} // namespace
+
+TEST_CASE("the parallel initial Delaunay and its copy equal the sequential one", "[mesher][initial_delaunay]")
+{
+    const auto points = grid_and_edge_points(28);
     Delaunay seq, par;
     build(seq, points, 1);
     build(par, points, 2);
@@ -80,4 +103,33 @@ TEST_CASE("the parallel initial Delaunay and its copy equal the sequential one",
     }
     REQUIRE(wrong == 0);
     REQUIRE(finite_cells(par) == finite_cells(seq));
+}
+
+TEST_CASE("the initial Delaunay polls for a cancel as the points go in", "[mesher][initial_delaunay]")
+{
+    // The largest single step of a run: a cancel (Ctrl-C in Python) must stop it part-way, not
+    // wait for its end. 42^3 + 3000 points, sequential and parallel.
+    const auto points = grid_and_edge_points(42);
+    for (const int threads : {1, 2}) {
+        CAPTURE(threads);
+        PollCounter polls;
+        {
+            isodel::InterruptScope scope(&polls, "delaunay");
+            Delaunay dt;
+            build(dt, points, threads, &scope);
+            REQUIRE(dt.number_of_vertices() == points.size());
+        }
+        REQUIRE(polls.total == points.size());
+        REQUIRE(polls.done.size() >= 4); // several polls, spread over the insertion
+        CHECK(std::is_sorted(polls.done.begin(), polls.done.end()));
+        CHECK(polls.done.back() >= points.size() / 2);
+
+        PollCounter cancelling;
+        cancelling.cancel_at = 2;
+        isodel::InterruptScope scope(&cancelling, "delaunay");
+        Delaunay dt;
+        CHECK_THROWS_AS(build(dt, points, threads, &scope), isodel::Cancelled);
+        CHECK(cancelling.done.size() == 2); // it stopped at the poll that asked
+        CHECK(cancelling.done.back() < points.size());
+    }
 }
