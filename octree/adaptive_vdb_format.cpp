@@ -1,4 +1,5 @@
 #include "octree/adaptive_vdb_format.h"
+#include "octree/vdb_file_layout.h"
 
 #include <isodel/errors.h>
 
@@ -104,6 +105,7 @@ void save_adaptive(const std::string& path, const AdaptiveVolume& v)
 
 AdaptiveVolume load_adaptive(const std::string& path)
 {
+    check_vdb_file_layout(path); // before OpenVDB allocates what the file states
     openvdb::GridPtrVec grids;
     try {
         openvdb::io::File f(path);
@@ -144,6 +146,7 @@ AdaptiveVolume load_adaptive(const std::string& path)
 std::optional<AdaptiveInfo> adaptive_info(const std::string& path)
 {
     try {
+        check_vdb_file_layout(path); // before OpenVDB allocates what the file states
         openvdb::io::File f(path);
         f.open();
         const auto metas = f.readAllGridMetadata();

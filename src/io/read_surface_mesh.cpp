@@ -66,7 +66,20 @@ double ply_binary(std::istream& in, const std::string& t, bool big, const std::s
     return as(double());
 }
 
-SurfaceMesh read_ply(const std::string& path, std::istream& in)
+/// The fewest bytes a record of \p e can take: its properties' sizes (a list's count) in binary,
+/// two characters per property ("0 ") in ASCII. Checks every property type on the way.
+std::uint64_t ply_min_record_bytes(const std::string& path, const PlyElement& e, bool ascii)
+{
+    std::uint64_t bytes = 0;
+    for (const auto& p : e.props) {
+        const int size = ply_size(path, p.type);
+        const int count_size = p.count_type.empty() ? 0 : ply_size(path, p.count_type);
+        bytes += ascii ? 2 : std::uint64_t(p.count_type.empty() ? size : count_size);
+    }
+    return bytes;
+}
+
+SurfaceMesh read_ply(const std::string& path, std::istream& in, std::uint64_t file_size)
 {
     std::string line, format;
     std::getline(in, line);
@@ -91,6 +104,18 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in)
     if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         io::invalid(path, "unsupported PLY format '" + format + "'");
     const bool ascii = format == "ascii", big = format == "binary_big_endian";
+    // Every record takes file bytes, so counts the file cannot hold are refused before any
+    // record is read (an element without properties would otherwise loop its count for nothing).
+    std::uint64_t needed = 0;
+    for (const auto& e : elems) {
+        const std::uint64_t record = ply_min_record_bytes(path, e, ascii);
+        if (e.count > 0 && record == 0) io::invalid(path, "PLY element '" + e.name + "' has records but no properties");
+        if (record > 0 && e.count > file_size / record)
+            io::invalid(path, "PLY header announces " + std::to_string(e.count) + " " + e.name +
+                                  " records, more than the file can hold");
+        needed += e.count * record;
+        if (needed > file_size) io::invalid(path, "PLY header announces more records than the file can hold");
+    }
     SurfaceMesh m;
     for (const auto& e : elems) {
         for (std::size_t r = 0; r < e.count; ++r) {
@@ -104,7 +129,10 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in)
                     return x;
                 };
                 if (!p.count_type.empty()) {
-                    const auto n = (long long)read1(p.count_type);
+                    const double length = read1(p.count_type);
+                    if (!(length >= 0 && length <= double(file_size))) // NaN too
+                        io::invalid(path, "PLY list length out of range");
+                    const auto n = (long long)length;
                     std::vector<long long> items;
                     for (long long k = 0; k < n; ++k) items.push_back((long long)read1(p.type));
                     if (e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index")) poly = items;
@@ -174,7 +202,9 @@ SurfaceMesh read_off(const std::string& path, std::istream& in)
     for (long long f = 0; f < nf; ++f) {
         long long n;
         if (!(body >> n)) io::invalid(path, "truncated OFF faces");
-        std::vector<long long> poly(std::size_t(std::max(0LL, n)));
+        // An index needs at least 2 bytes ("0 "): a longer face cannot be in the file.
+        if (n < 0 || std::uint64_t(n) > body_bytes / 2) io::invalid(path, "OFF face with an impossible vertex count");
+        std::vector<long long> poly(static_cast<std::size_t>(n));
         for (auto& i : poly)
             if (!(body >> i)) io::invalid(path, "truncated OFF faces");
         std::string rest;
@@ -245,7 +275,7 @@ SurfaceMesh read_surface_mesh(const std::string& path)
     const std::string ext = io::extension_of(path);
     SurfaceMesh m;
     try {
-        if (ext == ".ply") m = read_ply(path, in);
+        if (ext == ".ply") m = read_ply(path, in, size);
         else if (ext == ".obj") m = read_obj(path, in);
         else if (ext == ".off") m = read_off(path, in);
         else if (ext == ".stl") m = read_stl(path, in, size);

@@ -3,6 +3,8 @@
 #include "dense_volume.h"
 #include "readers.h"
 
+#include "octree/vdb_file_layout.h"
+
 #include <isodel/adaptive.h>
 #include <isodel/errors.h>
 
@@ -47,6 +49,8 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
 {
     file_size_or_throw(path);
     openvdb::initialize(); // idempotent; library users may not have called it
+    // Before OpenVDB reads anything: it allocates whatever sizes the file states.
+    octree::check_vdb_file_layout(path);
     // An isodel adaptive file (octree/, `isodel decimate`): F is the adaptive interpolant, which
     // the finest-grid resampling reproduces exactly (trilinear on every sub-cell), so every
     // command meshes and verifies the decimated F (Property IV) through the one uniform path.
@@ -68,7 +72,7 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
     openvdb::io::File file(path);
     try {
         file.open(/*delayLoad=*/false);
-    } catch (const openvdb::Exception& e) {
+    } catch (const std::exception& e) { // OpenVDB's exceptions, or std::bad_alloc for a corrupt size
         invalid(path, std::string("not a readable OpenVDB file (wrong magic number or corrupt header): ") + e.what());
     }
     openvdb::GridPtrVec metas;

@@ -65,3 +65,35 @@ TEST_CASE("fuzz finding: surface meshes with non-finite vertices or impossible c
     write_bytes(f, "OFF\n4000000000 1 0\n0 0 0\n");
     CHECK_THROWS_WITH(read_surface_mesh(f), Catch::StartsWith(f) && Catch::Contains("more than the file"));
 }
+
+TEST_CASE("fuzz finding: PLY and OFF records the file cannot hold are refused before reading them", "[io][fuzz]")
+{
+    TempDir dir;
+    // fuzz_read_surface_mesh: a vertex element without properties and a count of 999999994. Its
+    // records took no bytes, so the reader appended a billion vertices (1.6 GB) from a 220-byte
+    // file; smaller counts made the slow inputs of the fuzz runs.
+    const std::string p = dir / "no_properties.ply";
+    write_bytes(p, "ply\nformat binary_little_endian 1.0\nelement vertex 999999994\nend_header\n");
+    CHECK_THROWS_WITH(read_surface_mesh(p), Catch::StartsWith(p) && Catch::Contains("no properties"));
+    // Records with properties, but more than the bytes after the header.
+    const std::string q = dir / "huge_count.ply";
+    write_bytes(q, "ply\nformat ascii 1.0\nelement vertex 100000\nproperty float x\nproperty float y\n"
+                   "property float z\nend_header\n0 0 0\n");
+    CHECK_THROWS_WITH(read_surface_mesh(q), Catch::StartsWith(q) && Catch::Contains("more than the file can hold"));
+    // A face list length that no file holds (and a NaN one, which a float count type can spell).
+    const std::string r = dir / "long_face.ply";
+    write_bytes(r, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list float int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                   "1e18 0 1 2\n");
+    CHECK_THROWS_WITH(read_surface_mesh(r), Catch::StartsWith(r) && Catch::Contains("list length"));
+    // An OFF face announcing 10^15 vertices: refused before its index vector is allocated.
+    const std::string o = dir / "long_face.off";
+    write_bytes(o, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000000000 0 1 2\n");
+    CHECK_THROWS_WITH(read_surface_mesh(o), Catch::StartsWith(o) && Catch::Contains("impossible vertex count"));
+    // The same files with sensible counts still read.
+    const std::string ok = dir / "ok.ply";
+    write_bytes(ok, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                    "3 0 1 2\n");
+    CHECK(read_surface_mesh(ok).triangles.size() == 1);
+}
