@@ -4,7 +4,8 @@
 #   -DISODEL_SANITIZE=thread              ThreadSanitizer (the threaded mesher)
 # A finding stops the program, so a test that trips one fails: ASan never recovers, and UBSan is
 # built recoverable only so that ISODEL_SANITIZER_ENV can pass its suppressions of third-party
-# headers (cmake/ubsan_suppressions.txt) with halt_on_error=1. Tests and fuzz targets get that
+# headers (cmake/ubsan_suppressions.txt) with halt_on_error=1; LeakSanitizer reads
+# cmake/lsan_suppressions.txt (OpenVDB's leaks on a throwing read). Tests and fuzz targets get that
 # environment from CTest; set it by hand to run a program outside CTest. The system's
 # libraries (OpenVDB, TBB, Boost) are not instrumented: ASan still sees their heap through the
 # interposed allocator, TSan sees only the synchronisation they do in inline headers.
@@ -20,6 +21,7 @@ if(ISODEL_SANITIZE)
     # verify_asan_link_order=0: libFuzzer's runtime puts libstdc++ before ASan's shared runtime in
     # the fuzz targets' library list; ASan's malloc still comes before libc's, which is what counts.
     "ASAN_OPTIONS=detect_leaks=1:verify_asan_link_order=0"
+    "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/cmake/lsan_suppressions.txt"
     "TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=${PROJECT_SOURCE_DIR}/cmake/tsan_suppressions.txt")
   if(ISODEL_SANITIZE MATCHES "undefined" AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     # Clang's UBSan runtime for a shared library is linked by the executable; -shared-libsan keeps
