@@ -134,7 +134,12 @@ SurfaceMesh read_ply(const std::string& path, std::istream& in, std::uint64_t fi
                         io::invalid(path, "PLY list length out of range");
                     const auto n = (long long)length;
                     std::vector<long long> items;
-                    for (long long k = 0; k < n; ++k) items.push_back((long long)read1(p.type));
+                    for (long long k = 0; k < n; ++k) {
+                        // Any list entry may be an index: a float type can spell NaN or 1e300.
+                        const double item = read1(p.type);
+                        if (!(std::abs(item) < 9.0e18)) io::invalid(path, "PLY list entry out of range");
+                        items.push_back((long long)item);
+                    }
                     if (e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index")) poly = items;
                 } else {
                     const double x = read1(p.type);

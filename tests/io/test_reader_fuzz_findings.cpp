@@ -86,6 +86,12 @@ TEST_CASE("fuzz finding: PLY and OFF records the file cannot hold are refused be
                    "element face 1\nproperty list float int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
                    "1e18 0 1 2\n");
     CHECK_THROWS_WITH(read_surface_mesh(r), Catch::StartsWith(r) && Catch::Contains("list length"));
+    // fuzz_read_surface_mesh: a face list of float type holding NaN, cast to an index (undefined).
+    const std::string n = dir / "nan_index.ply";
+    write_bytes(n, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                   "3 0 1 1e300\n");
+    CHECK_THROWS_WITH(read_surface_mesh(n), Catch::StartsWith(n) && Catch::Contains("list entry out of range"));
     // An OFF face announcing 10^15 vertices: refused before its index vector is allocated.
     const std::string o = dir / "long_face.off";
     write_bytes(o, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000000000 0 1 2\n");
