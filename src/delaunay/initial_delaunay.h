@@ -19,7 +19,8 @@ namespace isodel::mesher {
 /// way: CGAL's symbolic perturbation defines Del uniquely even for the cospherical points of
 /// the grid, whatever the order of insertion. What may differ is where cells are stored,
 /// which nothing downstream depends on (vertex ids and facet keys order every result).
-/// \p scope, when given, is polled as the points go in (throws isodel::Cancelled).
+/// \p scope, when given, is polled as the points go in (throws isodel::Cancelled); the parallel
+/// insertion is one CGAL call and is not polled.
 void build_initial_delaunay(Delaunay& dt, const std::vector<std::pair<Point, VertexInfo>>& points,
                             const InterruptScope* scope = nullptr);
 
