@@ -43,6 +43,12 @@ namespace isodel {
 /// bounding box grown by one voxel, enlarged to hold the protective layer). Both: both, tagged.
 enum class TetRegion { None, Inside, Outside, Both };
 
+/// DELVOLMESH: how far apart the points it adds off Sigma (G') are, on a uniform grid.
+/// Graded: 1 voxel next to the protective layer G, doubling with the distance from it (see
+/// MeshOptions::tet_grading, tet_size), so the tet count follows the surface, not the volume.
+/// Uniform: every sample. On an adaptive grid G' is the leaf corners either way.
+enum class TetSpacing { Graded, Uniform };
+
 /// The smallest MeshOptions::block_voxels: the collar of cubic voxels.
 constexpr int kMinBlockVoxels = 4;
 
@@ -68,6 +74,15 @@ struct MeshOptions {
     /// within a region): M, the region tags and the volumes stay; the tets are no longer all
     /// Delaunay. false keeps Del(E u G u N u G') restricted to the region(s).
     bool improve_tets = true;
+    TetSpacing tet_spacing = TetSpacing::Graded; ///< G' on a uniform grid (TetSpacing)
+    /// Graded G': a sample at chessboard distance d voxels from G is kept when it lies on the
+    /// lattice of spacing 2^l (counted from the box's lowest corner), 2^l the largest power of
+    /// two with 2^l <= 1 + tet_grading * d and 2^l voxels <= tet_size. Nested lattices, so the
+    /// points of a coarser zone are also points of the finer ones. > 0.
+    double tet_grading = 0.5;
+    /// Graded G': the largest spacing in world units (rounded down to a power of two voxels,
+    /// at least 1 voxel; tets there have edges up to about sqrt(3) times it); 0 = 8 voxels.
+    double tet_size = 0;
     /// Partitioned meshing (paper Fig. 8), dense grids: > 0 cuts the domain into blocks of this
     /// many voxels per axis, meshes each block with a protective collar concurrently, then
     /// merges their points in one Delaunay triangulation whose closed-ball and eps checks fix

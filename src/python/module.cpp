@@ -64,6 +64,8 @@ struct MeshArgs {
     double iso = 0;
     std::optional<double> eps_voxels, eps;
     std::optional<std::string> inside, tets;
+    std::string tet_spacing = "graded";
+    double tet_size = 0, tet_grading = 0.5;
     bool adaptive = false, certify = false, snap = false, improve_tets = true;
     std::optional<int> threads;
     int max_rounds = 2000, block_voxels = 0;
@@ -88,6 +90,11 @@ MeshOptions mesh_options(const MeshArgs& a)
     mo.block_voxels = a.block_voxels;
     mo.tets = parse_tets(a.tets);
     mo.improve_tets = a.improve_tets;
+    if (a.tet_spacing != "graded" && a.tet_spacing != "uniform")
+        throw InvalidInput("tet_spacing: '" + a.tet_spacing + "' is not \"graded\" or \"uniform\"");
+    mo.tet_spacing = a.tet_spacing == "uniform" ? TetSpacing::Uniform : TetSpacing::Graded;
+    mo.tet_size = a.tet_size;
+    mo.tet_grading = a.tet_grading;
     mo.facet_angle_deg = a.facet_angle_deg;
     mo.adaptive = a.adaptive;
     check_mesh_options(mo); // before any work, with the CLI's messages
@@ -320,6 +327,9 @@ PYBIND11_MODULE(_isodel, m)
         .def_readwrite("certify", &MeshArgs::certify)
         .def_readwrite("snap", &MeshArgs::snap)
         .def_readwrite("improve_tets", &MeshArgs::improve_tets)
+        .def_readwrite("tet_spacing", &MeshArgs::tet_spacing)
+        .def_readwrite("tet_size", &MeshArgs::tet_size)
+        .def_readwrite("tet_grading", &MeshArgs::tet_grading)
         .def_readwrite("threads", &MeshArgs::threads)
         .def_readwrite("max_rounds", &MeshArgs::max_rounds)
         .def_readwrite("block_voxels", &MeshArgs::block_voxels)

@@ -167,6 +167,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         vp.interrupter = interrupter;
         vp.adaptive = leaves.get();
         vp.improve = options.improve_tets;
+        GradedSpacing spacing{options.tet_grading, graded_max_level(options.tet_size, field.min_voxel_edge())};
+        if (options.tet_spacing == TetSpacing::Graded) vp.spacing = &spacing;
         result.tets = build_volume_mesh(dt, refiner.cache(), field, ip.g_mask.get(), result.surface, vp, st.tets);
         st.seconds["tets"] = seconds_since(t0);
     }

@@ -170,6 +170,10 @@ void check_mesh_options(const MeshOptions& o)
     // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
     if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
         refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");
+    if (!(o.tet_grading > 0) || !std::isfinite(o.tet_grading))
+        refuse("tet_grading must be a finite number > 0 (got " + num(o.tet_grading) + ")");
+    if (!(o.tet_size >= 0) || !std::isfinite(o.tet_size))
+        refuse("tet_size must be a finite number >= 0 (got " + num(o.tet_size) + ")");
     if (!(o.adaptive_share > 0 && o.adaptive_share < 1))
         refuse("adaptive_share must be in (0, 1) (got " + num(o.adaptive_share) + ")");
     if (o.adaptive_k < 1 || o.adaptive_k > 4) refuse("adaptive_k must be in [1, 4] (got " + std::to_string(o.adaptive_k) + ")");

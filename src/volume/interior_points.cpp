@@ -2,9 +2,16 @@
 
 #include "seeding/adaptive_points.h"
 
-namespace isodel::mesher {
+#include <openvdb/tools/Morphology.h>
 
-openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::MaskGrid& g_mask)
+#include <algorithm>
+#include <cmath>
+
+namespace isodel::mesher {
+namespace {
+
+/// The box of the uniform G' (no rounding).
+openvdb::CoordBBox plain_box(const octree::SampleField& field, const openvdb::MaskGrid& g_mask)
 {
     openvdb::CoordBBox box = field.domain();
     box.expand(1);
@@ -13,13 +20,84 @@ openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::M
     return box;
 }
 
+/// The distance from G at which spacing 2^l starts: T_l = ceil((2^l - 1) / grading).
+double level_start(int l, double grading) { return std::ceil((std::ldexp(1.0, l) - 1) / grading); }
+
+/// \p spacing with max_level lowered to the largest level some sample of \p box can be far
+/// enough from G for (T_l at most the box's extent): higher levels never occur, and rounding
+/// the box up to their spacing, or dilating G that far, would be work for nothing.
+GradedSpacing reachable(GradedSpacing spacing, const openvdb::CoordBBox& box)
+{
+    const openvdb::Coord dim = box.dim();
+    const int extent = std::max({dim.x(), dim.y(), dim.z()});
+    int l = 0;
+    while (l < spacing.max_level && level_start(l + 1, spacing.grading) <= extent) ++l;
+    spacing.max_level = l;
+    return spacing;
+}
+
+/// zones[l - 1] holds the voxels closer to G than the distance at which spacing 2^l starts,
+/// T_l: outside it the spacing is at least 2^l. The zones grow by dilating G (26-neighbourhood:
+/// chessboard distance).
+/// \pre spacing == reachable(spacing, plain box): each dilation is bounded by the box's extent.
+std::vector<openvdb::MaskGrid::Ptr> spacing_zones(const openvdb::MaskGrid& g_mask, const GradedSpacing& spacing)
+{
+    std::vector<openvdb::MaskGrid::Ptr> zones;
+    openvdb::MaskGrid::Ptr grown = g_mask.deepCopy();
+    int radius = 0; // grown = the voxels within this chessboard distance of G
+    for (int l = 1; l <= spacing.max_level; ++l) {
+        const int target = std::max(0, int(level_start(l, spacing.grading)) - 1);
+        if (target > radius) {
+            openvdb::tools::dilateActiveValues(grown->tree(), target - radius, openvdb::tools::NN_FACE_EDGE_VERTEX,
+                                               openvdb::tools::EXPAND_TILES);
+            radius = target;
+        }
+        zones.push_back(grown->deepCopy());
+    }
+    return zones;
+}
+
+} // namespace
+
+int graded_max_level(double tet_size, double voxel)
+{
+    if (tet_size <= 0) return 3;
+    const double ratio = tet_size / voxel;
+    if (!(ratio >= 2)) return 0;
+    return std::min(10, int(std::floor(std::log2(ratio))));
+}
+
+openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
+                              const GradedSpacing* spacing)
+{
+    openvdb::CoordBBox box = plain_box(field, g_mask);
+    if (spacing) {
+        const int step = 1 << reachable(*spacing, box).max_level;
+        openvdb::Coord hi = box.max();
+        for (int a = 0; a < 3; ++a) {
+            const int span = hi[a] - box.min()[a];
+            hi[a] = box.min()[a] + (span + step - 1) / step * step;
+        }
+        box = openvdb::CoordBBox(box.min(), hi);
+    }
+    return box;
+}
+
 std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
-                                            TetRegion region, const octree::AdaptiveGrid::Reader* adaptive)
+                                            TetRegion region, const octree::AdaptiveGrid::Reader* adaptive,
+                                            const GradedSpacing* spacing)
 {
     const bool want_in = region == TetRegion::Inside || region == TetRegion::Both;
     const bool want_out = region == TetRegion::Outside || region == TetRegion::Both;
+    if (adaptive) spacing = nullptr;
     // Inside points lie in the domain (beyond it phi < 0); outside points fill the whole box.
-    const openvdb::CoordBBox box = want_out ? volume_box(field, g_mask) : field.domain();
+    const openvdb::CoordBBox outer = volume_box(field, g_mask, spacing);
+    const openvdb::CoordBBox box = want_out ? outer : field.domain();
+    const openvdb::Coord anchor = outer.min();
+    std::vector<openvdb::MaskGrid::Ptr> zones;
+    if (spacing) zones = spacing_zones(g_mask, reachable(*spacing, plain_box(field, g_mask)));
+    std::vector<openvdb::MaskGrid::ConstAccessor> in_zone;
+    for (const auto& z : zones) in_zone.push_back(z->getConstAccessor());
     const octree::SampleField::Reader reader(field);
     const auto acc = g_mask.getConstAccessor();
     std::vector<openvdb::Coord> out;
@@ -28,6 +106,13 @@ std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, co
             for (int x = box.min().x(); x <= box.max().x(); ++x) {
                 const openvdb::Coord c(x, y, z);
                 if (acc.isValueOn(c)) continue;
+                // The lattice test first: it is the cheap one, and most samples fail it.
+                if (!in_zone.empty()) {
+                    int level = 0;
+                    while (level < int(in_zone.size()) && !in_zone[std::size_t(level)].isValueOn(c)) ++level;
+                    const int mask = (1 << level) - 1;
+                    if (((x - anchor.x()) | (y - anchor.y()) | (z - anchor.z())) & mask) continue;
+                }
                 // phi is never 0 at a sample (octree/sample_field.h): "strictly" is automatic.
                 if (!(reader.phi(c) > 0 ? want_in : want_out)) continue;
                 if (adaptive && !is_leaf_node(*adaptive, c)) continue;

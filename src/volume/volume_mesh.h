@@ -11,6 +11,7 @@
 #include "delaunay/delaunay.h"
 #include "closed_ball/restricted_facets.h"
 #include "octree/adaptive_grid.h"
+#include "volume/interior_points.h"
 #include "octree/sample_field.h"
 
 #include <isodel/interrupt.h>
@@ -30,6 +31,8 @@ struct VolumeMeshParams {
     /// Improve the worst tets by smoothing and flips away from M (tet_improvement.h); false
     /// keeps the Delaunay tetrahedra.
     bool improve = true;
+    /// Graded G' on a uniform grid (interior_points.h); null = every sample.
+    const GradedSpacing* spacing = nullptr;
 };
 
 /// Inserts G' into \p dt (through \p cache), checks that M is unchanged, classifies the cells

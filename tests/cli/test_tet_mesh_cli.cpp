@@ -74,6 +74,33 @@ TEST_CASE("mesh --tets: an unknown extension is refused before meshing", "[cli][
     CHECK(list_dir(tmp.path()).empty()); // nothing written: not even the surface
 }
 
+TEST_CASE("mesh --tets: --uniform-tets, --tet-size and --grading change the tets, not the surface", "[cli][tets]")
+{
+    TempDir tmp;
+    const auto mesh = [&](const std::string& name, const std::string& extra) {
+        const RunResult r = run_isodel("mesh " + shell_quote(blobs()) + " -o " + shell_quote(tmp / (name + ".ply")) +
+                                           " --iso 0.5 --region both --tets " + shell_quote(tmp / (name + ".mesh")) + extra,
+                                       tmp.path());
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        return read_text(tmp / (name + ".mesh"));
+    };
+    const std::string graded = mesh("graded", ""), uniform = mesh("uniform", " --uniform-tets");
+    const std::string small = mesh("small", " --tet-size 0.5 --grading 2");
+    CHECK(read_text(tmp / "graded.ply") == read_text(tmp / "uniform.ply"));
+    CHECK(read_text(tmp / "graded.ply") == read_text(tmp / "small.ply"));
+    CHECK(graded.size() < uniform.size());
+    CHECK(small == uniform); // a largest spacing of one voxel (0.5) is every sample
+    for (const std::string bad : {" --grading 0", " --tet-size -1"}) {
+        TempDir out;
+        const RunResult r = run_isodel("mesh " + shell_quote(blobs()) + " -o " + shell_quote(out / "s.ply") +
+                                           " --iso 0.5 --tets " + shell_quote(out / "t.mesh") + bad,
+                                       out.path());
+        CHECK(r.status != 0);
+        CHECK(list_dir(out.path()).empty());
+    }
+}
+
 TEST_CASE("verify --tets: isodel's .mesh verifies; a .vtu is refused with the file named", "[cli][tets][verify]")
 {
     TempDir tmp;

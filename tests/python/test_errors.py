@@ -68,6 +68,9 @@ def test_nan_is_refused_naming_its_index():
     (dict(inside="left"), "inside"),
     (dict(spacing=(1, 0, 1)), "spacing"),
     (dict(threads=-3), "threads"),
+    (dict(tets="inside", tet_spacing="coarse"), "tet_spacing"),
+    (dict(tets="inside", tet_grading=0), "tet_grading"),
+    (dict(tets="inside", tet_size=-1), "tet_size"),
 ])
 def test_bad_options(kwargs, message):
     with pytest.raises(ValueError, match=message):

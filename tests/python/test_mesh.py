@@ -110,6 +110,18 @@ def test_tets_and_meshio_volume(tmp_path, data):
     assert isodel.mesh(data / "two_blobs.mrc", 0.5, eps_voxels=1).tets is None
 
 
+def test_graded_tets_keep_the_surface_with_fewer_points():
+    z, y, x = np.meshgrid(*[np.arange(36.0)] * 3, indexing="ij")
+    ball = (14.0 - np.sqrt((x - 17.3) ** 2 + (y - 17.6) ** 2 + (z - 17.1) ** 2)).astype(np.float32)
+    graded = isodel.mesh(ball, 0.0, tets="inside")
+    uniform = isodel.mesh(ball, 0.0, tets="inside", tet_spacing="uniform")
+    coarse = isodel.mesh(ball, 0.0, tets="inside", tet_size=2.0)
+    np.testing.assert_array_equal(graded.triangles, uniform.triangles)
+    np.testing.assert_array_equal(graded.vertices, uniform.vertices)
+    assert len(graded.tet_vertices) < len(coarse.tet_vertices) < len(uniform.tet_vertices)
+    assert graded.stats["tets"]["volume_inside"] == pytest.approx(uniform.stats["tets"]["volume_inside"], rel=1e-9)
+
+
 def test_threads_do_not_change_the_mesh(data):
     one = isodel.mesh(data / "torus.vdb", 0.0, eps_voxels=1, threads=1)
     two = isodel.mesh(data / "torus.vdb", 0.0, eps_voxels=1, threads=2)

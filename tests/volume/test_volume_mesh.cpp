@@ -27,9 +27,10 @@ openvdb::FloatGrid::Ptr sphere_grid()
 }
 
 MeshResult mesh_tets(const openvdb::FloatGrid& grid, double iso, Inside inside, TetRegion region, int threads = 0,
-                     bool improve = true)
+                     bool improve = true, TetSpacing spacing = TetSpacing::Graded)
 {
     MeshOptions mo;
+    mo.tet_spacing = spacing;
     mo.isovalue = iso;
     mo.inside = inside;
     mo.eps_voxels = 0.5;
@@ -69,7 +70,8 @@ std::array<double, 3> circumcentre(const std::array<double, 3>& p0, const std::a
 TEST_CASE("volume mesh: sphere, inside region", "[mesher][volume_mesh]")
 {
     const auto grid = sphere_grid();
-    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside, 0, /*improve=*/false);
+    const MeshResult r =
+        mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside, 0, /*improve=*/false, TetSpacing::Uniform);
     testing::require_volume_mesh(r, TetRegion::Inside, "sphere inside");
     CHECK(r.stats.tets.tets_outside == 0);
     CHECK(r.stats.tets.g_prime > 0);
@@ -88,19 +90,64 @@ TEST_CASE("volume mesh: sphere, inside region", "[mesher][volume_mesh]")
 TEST_CASE("volume mesh: sphere, both regions fill the grid's box", "[mesher][volume_mesh]")
 {
     const auto grid = sphere_grid();
-    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Both);
+    // Uniform G': the box [-2, 27]. Graded: its extent grown to a multiple of 8 voxels, [-2, 30].
+    const bool uniform = GENERATE(true, false);
+    const TetSpacing spacing = uniform ? TetSpacing::Uniform : TetSpacing::Graded;
+    INFO((uniform ? "uniform" : "graded"));
+    const MeshResult r = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Both, 0, true, spacing);
     testing::require_volume_mesh(r, TetRegion::Both, "sphere both");
-    const double box = std::pow(29 * 0.5, 3);
+    const double box = std::pow((uniform ? 29 : 32) * 0.5, 3);
     CHECK(std::abs(r.stats.tets.volume_inside + r.stats.tets.volume_outside - box) <= 1e-9 * box);
     CHECK(r.stats.tets.tets_inside > 0);
     CHECK(r.stats.tets.tets_outside > 0);
 
-    const MeshResult o = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Outside);
+    const MeshResult o = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Outside, 0, true, spacing);
     testing::require_volume_mesh(o, TetRegion::Outside, "sphere outside");
     CHECK(o.stats.tets.tets_inside == 0);
     CHECK(std::abs(o.stats.tets.volume_outside + o.stats.tets.volume_enclosed_by_surface - box) <= 1e-9 * box);
     // The same surface whatever the region: G' never changes M.
     CHECK(o.surface.triangles == r.surface.triangles);
+}
+
+TEST_CASE("volume mesh: graded G' keeps M and the volumes with fewer tets than uniform G'", "[mesher][volume_mesh]")
+{
+    // A sphere of radius 16 voxels: deep enough inside for the 2, 4 and 8 voxel lattices.
+    const auto grid = testing::make_grid(40, 1.0, openvdb::Vec3d(0.0),
+                                         [](const openvdb::Vec3d& x) { return testing::sphere_f(x, {19.3, 19.6, 19.2}, 16.0); });
+    const MeshResult u = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside, 0, true, TetSpacing::Uniform);
+    const MeshResult g = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside, 0, true, TetSpacing::Graded);
+    testing::require_volume_mesh(u, TetRegion::Inside, "sphere uniform");
+    testing::require_volume_mesh(g, TetRegion::Inside, "sphere graded");
+    CHECK(g.surface.vertices == u.surface.vertices);
+    CHECK(g.surface.triangles == u.surface.triangles);
+    CHECK(std::abs(g.stats.tets.volume_inside - u.stats.tets.volume_inside) <= 1e-9 * u.stats.tets.volume_inside);
+    INFO("tets uniform " << u.stats.tets.tets_inside << " graded " << g.stats.tets.tets_inside << "; G' uniform "
+                          << u.stats.tets.g_prime << " graded " << g.stats.tets.g_prime);
+    // Most tets have a vertex on M (its shell of E and G is the same either way); G' is what shrinks.
+    CHECK(g.stats.tets.g_prime < 0.5 * double(u.stats.tets.g_prime));
+    CHECK(g.stats.tets.tets_inside < 0.8 * double(u.stats.tets.tets_inside));
+    // The Delaunay tets where the lattices meet are no longer cube pieces (35.26 degrees; points of
+    // both lattices can be cospherical, and slivers come out of such sets); the improvement lifts
+    // them to no worse than the uniform mesh's tets off M.
+    INFO("off M: uniform " << u.stats.tets.min_dihedral_deg_off_surface << " graded " << g.stats.tets.min_dihedral_deg_off_surface);
+    CHECK(g.stats.tets.min_dihedral_deg_off_surface >= u.stats.tets.min_dihedral_deg_off_surface - 1e-9);
+    // The worst tets are M's (all four vertices on it), which G' does not touch.
+    CHECK(g.stats.tets.min_dihedral_deg >= u.stats.tets.min_dihedral_deg - 1e-9);
+    // A smaller tet_size gives more tets; a smaller grading too.
+    MeshOptions mo;
+    mo.eps_voxels = 0.5;
+    mo.inside = Inside::Above;
+    mo.tets = TetRegion::Inside;
+    mo.tet_size = 2.0;
+    const MeshResult small = mesh_isosurface(*grid, mo);
+    CHECK(small.surface.triangles == u.surface.triangles);
+    CHECK(small.stats.tets.tets_inside > g.stats.tets.tets_inside);
+    CHECK(small.stats.tets.tets_inside < u.stats.tets.tets_inside);
+    mo.tet_size = 0;
+    mo.tet_grading = 0.25;
+    const MeshResult gentle = mesh_isosurface(*grid, mo);
+    CHECK(gentle.stats.tets.tets_inside > g.stats.tets.tets_inside);
+    testing::require_volume_mesh(gentle, TetRegion::Inside, "sphere gentle grading");
 }
 
 TEST_CASE("volume mesh: bundled torus.vdb (level set, inside below)", "[mesher][volume_mesh]")

@@ -26,6 +26,8 @@ struct MeshCliOptions {
     bool snap = false;
     bool certify = false;
     bool no_improve = false;
+    bool uniform_tets = false;
+    double tet_size = 0, grading = 0.5;
     double facet_angle = 0;
     bool adaptive = false;
     double adaptive_share = 0.5;
@@ -55,6 +57,15 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         ->check(CLI::Range(0.0, 35.0));
     cmd->add_flag("--no-improve-tets", o->no_improve,
                   "Keep the Delaunay tetrahedra (no smoothing or flips; M and the regions are the same either way)");
+    cmd->add_option("--tet-size", o->tet_size,
+                    "Largest spacing of the points added off M, world units (default 8 voxels; rounded down "
+                    "to a power of two voxels): tets grow from voxel size at M to this far from it")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--grading", o->grading,
+                    "Growth of the point spacing per voxel of distance from M (default 0.5)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--uniform-tets", o->uniform_tets,
+                  "Add every sample off M (one tet size, the voxel's) instead of graded spacing");
     cmd->add_option("--threads", o->threads, "Threads (0 = all); the mesh does not depend on it");
     cmd->add_option("--stats", o->stats, "Write statistics as JSON");
     cmd->add_option("--max-rounds", o->max_rounds, "Bound on refinement rounds");
@@ -107,6 +118,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
             mo.tets = o->region == "both" ? TetRegion::Both
                     : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
         mo.improve_tets = !o->no_improve;
+        mo.tet_spacing = o->uniform_tets ? TetSpacing::Uniform : TetSpacing::Graded;
+        mo.tet_size = o->tet_size;
+        mo.tet_grading = o->grading;
         mo.facet_angle_deg = o->facet_angle;
         mo.adaptive = o->adaptive;
         mo.adaptive_share = o->adaptive_share;

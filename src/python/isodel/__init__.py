@@ -111,7 +111,8 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
          adaptive: bool = False, threads: Optional[int] = None, certify: bool = False,
          progress: Optional[ProgressCallback] = None, grid: str = "", snap: bool = False,
          improve_tets: bool = True, facet_angle_deg: float = 0.0, block_voxels: int = 0,
-         max_rounds: int = 2000, max_points: int = 0) -> Mesh:
+         max_rounds: int = 2000, max_points: int = 0, tet_spacing: str = "graded",
+         tet_size: float = 0.0, tet_grading: float = 0.5) -> Mesh:
     """Mesh the level set {F = iso} of a volume, with guarantees (as `isodel mesh`).
 
     volume: a 3-d numpy array (any float or integer dtype; read in place, not copied first), a
@@ -126,6 +127,10 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
     axis_order: arrays only: "zyx" (default: array[z, y, x], as MRC files, mrcfile and
         scikit-image keep them) or "xyz" (array[x, y, z]).
     tets: None, "inside", "outside" or "both": also build the tetrahedral mesh of that region.
+    tet_spacing: "graded" (default: points off M one voxel apart next to it, doubling with the
+        distance, so the tet count follows the surface) or "uniform" (every sample).
+    tet_size, tet_grading: graded spacing: the largest spacing in world units (0 = 8 voxels) and
+        its growth per voxel of distance from M (as the CLI's --tet-size, --grading).
     adaptive: certified adaptive meshing (coarse cells where a certificate allows; dense input).
     threads: worker threads (None = all); the mesh does not depend on it.
     certify: verify the mesh before returning it; GuaranteeViolated if it fails.
@@ -150,6 +155,9 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
     args.certify = bool(certify)
     args.snap = bool(snap)
     args.improve_tets = bool(improve_tets)
+    args.tet_spacing = str(tet_spacing)
+    args.tet_size = float(tet_size)
+    args.tet_grading = float(tet_grading)
     args.threads = threads
     args.max_rounds = int(max_rounds)
     args.block_voxels = int(block_voxels)

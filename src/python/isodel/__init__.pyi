@@ -37,7 +37,8 @@ def mesh(volume: _Volume, iso: float, *, eps_voxels: Optional[float] = ..., eps:
          axis_order: str = ..., tets: Optional[str] = ..., adaptive: bool = ...,
          threads: Optional[int] = ..., certify: bool = ..., progress: Optional[ProgressCallback] = ...,
          grid: str = ..., snap: bool = ..., improve_tets: bool = ..., facet_angle_deg: float = ...,
-         block_voxels: int = ..., max_rounds: int = ..., max_points: int = ...) -> Mesh: ...
+         block_voxels: int = ..., max_rounds: int = ..., max_points: int = ...,
+         tet_spacing: str = ..., tet_size: float = ..., tet_grading: float = ...) -> Mesh: ...
 
 def verify(volume: _Volume, iso: float,
            mesh: Union[Mesh, _Path, Tuple[npt.ArrayLike, npt.ArrayLike]], *,
