@@ -5,8 +5,8 @@
 #    then each fuzz target for ISODEL_FUZZ_SECONDS from its seeds (label "fuzz").
 # 2. ThreadSanitizer: the tests labelled "tsan" (the parallel stages, at 1 and 2 threads).
 # Each build is a unity build of only the targets its tests need: no benchmarks, no Python module,
-# no test folder it does not run. Needs clang, libclang-rt-14-dev and dpkg-dev (the README's
-# install line). The run options (halt on the first report, suppressions) are CTest's
+# no test file it does not run (ISODEL_TEST_SUBSET, tests/CMakeLists.txt). Needs clang,
+# libclang-rt-14-dev and dpkg-dev (the README's install line). The run options (halt on the first report, suppressions) are CTest's
 # ISODEL_SANITIZER_ENV, set in cmake/Sanitize.cmake.
 set -e
 prefix=${1:-build-}
@@ -17,7 +17,7 @@ common="-G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release -DCMAKE
 
 # 1. ASan + UBSan, and the fuzz smoke runs.
 cmake -S . -B "${prefix}asan" $common "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
-      -DISODEL_SANITIZE=address,undefined -DISODEL_FUZZ=ON
+      -DISODEL_SANITIZE=address,undefined -DISODEL_FUZZ=ON -DISODEL_TEST_SUBSET=asan
 cmake --build "${prefix}asan" --target fuzz_targets make_fuzz_seeds isodel_cli sanitizer_canary \
       test_io test_octree test_geometry test_delaunay test_closed_ball test_verify test_cli
 ctest --test-dir "${prefix}asan" -L "asan|fuzz" --output-on-failure -j "$jobs"
@@ -45,7 +45,7 @@ if [ ! -f "$tbb/install/lib/libtbb.so.12" ]; then
         -DTBB_EXAMPLES=OFF -DTBB_STRICT=OFF -DCMAKE_INSTALL_PREFIX="$tbb/install"
   cmake --build "$tbb/build" && cmake --install "$tbb/build"
 fi
-cmake -S . -B "${prefix}tsan" $common "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DISODEL_SANITIZE=thread
+cmake -S . -B "${prefix}tsan" $common "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DISODEL_SANITIZE=thread -DISODEL_TEST_SUBSET=tsan
 cmake --build "${prefix}tsan" --target isodel_cli sanitizer_canary test_surface test_octree test_delaunay
 export LD_LIBRARY_PATH="$tbb/install/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 if ! ldd "${prefix}tsan/bin/test_octree" | grep -q "$tbb/install/lib/libtbb.so.12"; then
