@@ -64,7 +64,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void run(const std::string& file, double iso, double facet_angle)
+/// isodel's inside tets with every sample as G' (--uniform-tets): count, tets under 10 degrees, seconds.
+struct UniformRun {
+    std::size_t tets = 0, bad = 0;
+    double seconds = 0;
+};
+
+UniformRun run_uniform(const isodel::Volume& vol, double iso, double facet_angle)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    isodel::MeshOptions mo;
+    mo.isovalue = iso;
+    mo.inside = vol.default_inside;
+    mo.eps_voxels = 0.5;
+    mo.tets = isodel::TetRegion::Inside;
+    mo.tet_spacing = isodel::TetSpacing::Uniform;
+    mo.facet_angle_deg = facet_angle;
+    const isodel::MeshResult r = isodel::mesh_isosurface(*vol.grid, mo);
+    UniformRun u{r.tets.tets.size(), 0, seconds_since(t0)};
+    for (const auto& t : r.tets.tets)
+        u.bad += dihedral_range({r.tets.vertices[t[0]], r.tets.vertices[t[1]], r.tets.vertices[t[2]],
+                                 r.tets.vertices[t[3]]}).first < 10;
+    return u;
+}
+
+void run(const std::string& file, double iso, double facet_angle, bool compare_uniform)
 {
     const isodel::Volume vol = isodel::read_volume(file);
     const isodel::octree::SampleField field(vol.grid, iso, vol.default_inside);
@@ -121,9 +145,14 @@ void run(const std::string& file, double iso, double facet_angle)
         lo_m = std::min(lo_m, lo);
         hi_m = std::max(hi_m, hi);
     }
-    std::printf("%-34s %9zu %9.4f %9.4f %9.4f %7zu %7.1f | %9zu %9.4f %9.4f %7zu %7.1f\n",
+    std::printf("%-34s %9zu %9.4f %9.4f %9.4f %7zu %7.1f | %9zu %9.4f %9.4f %7zu %7.1f",
                 file.substr(file.rfind('/') + 1).c_str(), r.tets.tets.size(), r.stats.tets.min_dihedral_deg_delaunay,
                 lo_i, hi_i, bad_i, t_isodel, std::size_t(c3t3.number_of_cells_in_complex()), lo_m, hi_m, bad_m, t_mesh3);
+    if (compare_uniform) {
+        const UniformRun u = run_uniform(vol, iso, facet_angle);
+        std::printf(" | %9zu %7zu %7.1f", u.tets, u.bad, u.seconds);
+    }
+    std::printf("\n");
     std::fflush(stdout);
 }
 
@@ -134,24 +163,36 @@ int main(int argc, char** argv)
     openvdb::initialize();
     // --facet-angle DEG: isodel refines M's triangles to that angle first (isodel mesh
     // --facet-angle), as Mesh_3's facet_angle = 25 does for its own surface.
+    // --compare-uniform: also isodel with every sample as G' (--uniform-tets), in the same run.
     double facet_angle = 0;
+    bool compare_uniform = false;
     int first = 1;
-    if (argc > 2 && std::string(argv[1]) == "--facet-angle") {
-        facet_angle = std::stod(argv[2]);
-        first = 3;
+    for (bool more = true; more && first < argc;) {
+        const std::string a = argv[first];
+        if (a == "--facet-angle" && first + 1 < argc) {
+            facet_angle = std::stod(argv[first + 1]);
+            first += 2;
+        } else if (a == "--compare-uniform") {
+            compare_uniform = true;
+            ++first;
+        } else {
+            more = false;
+        }
     }
     if (argc - first < 2 || (argc - first) % 2 != 0) {
-        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] FILE ISO [FILE ISO ...]\n");
+        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] [--compare-uniform] FILE ISO [FILE ISO ...]\n");
         return 2;
     }
     // isodel: min_Del is the Delaunay tets' smallest angle, min_dih/max_dih after improvement
     // (src/volume/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees.
     std::printf("isodel facet angle: %s\n", facet_angle > 0 ? std::to_string(facet_angle).c_str() : "none");
-    std::printf("%-34s %9s %9s %9s %9s %7s %7s | %9s %9s %9s %7s %7s\n", "volume (eps 0.5 voxel, inside)", "isodel",
+    std::printf("%-34s %9s %9s %9s %9s %7s %7s | %9s %9s %9s %7s %7s", "volume (eps 0.5 voxel, inside)", "isodel",
                 "min_Del", "min_dih", "max_dih", "<10deg", "s", "Mesh_3", "min_dih", "max_dih", "<10deg", "s");
+    if (compare_uniform) std::printf(" | %9s %7s %7s", "uniform", "<10deg", "s");
+    std::printf("\n");
     for (int i = first; i + 1 < argc; i += 2) {
         try {
-            run(argv[i], std::stod(argv[i + 1]), facet_angle);
+            run(argv[i], std::stod(argv[i + 1]), facet_angle, compare_uniform);
         } catch (const std::exception& e) {
             std::printf("%-40s failed: %s\n", argv[i], e.what());
         }
