@@ -40,12 +40,14 @@ namespace isodel {
 
 /// DELVOLMESH (paper Section 4.1): which tetrahedra of Del(E u G u N u G') to return.
 /// Inside: the region {F inside v}, bounded by M. Outside: the rest of the grid's box (the active
-/// bounding box grown by one voxel, enlarged to hold the protective layer). Both: both, tagged.
+/// bounding box grown by one voxel, enlarged to hold the protective layer; with graded spacing
+/// its extent is then rounded up to a multiple of the largest spacing). Both: both, tagged.
 enum class TetRegion { None, Inside, Outside, Both };
 
 /// DELVOLMESH: how far apart the points it adds off Sigma (G') are, on a uniform grid.
-/// Graded: 1 voxel next to the protective layer G, doubling with the distance from it (see
-/// MeshOptions::tet_grading, tet_size), so the tet count follows the surface, not the volume.
+/// Graded: spacing growing with the distance from the protective layer G in powers of two (1
+/// voxel next to it with the default grading; see MeshOptions::tet_grading, tet_size), so the
+/// tet count follows the surface, not the volume.
 /// Uniform: every sample. On an adaptive grid G' is the leaf corners either way.
 enum class TetSpacing { Graded, Uniform };
 
@@ -75,13 +77,16 @@ struct MeshOptions {
     /// Delaunay. false keeps Del(E u G u N u G') restricted to the region(s).
     bool improve_tets = true;
     TetSpacing tet_spacing = TetSpacing::Graded; ///< G' on a uniform grid (TetSpacing)
-    /// Graded G': a sample at chessboard distance d voxels from G is kept when it lies on the
-    /// lattice of spacing 2^l (counted from the box's lowest corner), 2^l the largest power of
-    /// two with 2^l <= 1 + tet_grading * d and 2^l voxels <= tet_size. Nested lattices, so the
-    /// points of a coarser zone are also points of the finer ones. > 0.
+    /// Graded G': a sample at chessboard distance d voxels from G (d >= 1) is kept when it lies
+    /// on the lattice of spacing 2^l (counted from the box's lowest corner), 2^l the largest
+    /// power of two with 2^l <= 1 + tet_grading * d and 2^l voxels <= tet_size, and l no larger
+    /// than any sample of the box can reach. Nested lattices, so the points of a coarser zone are
+    /// also points of the finer ones. > 0; at 1 or more, the samples next to G are already 2
+    /// voxels apart.
     double tet_grading = 0.5;
-    /// Graded G': the largest spacing in world units (rounded down to a power of two voxels,
-    /// at least 1 voxel; tets there have edges up to about sqrt(3) times it); 0 = 8 voxels.
+    /// Graded G': the largest spacing in world units, counted in smallest voxel edges and
+    /// rounded down to a power of two of them, from 1 to 1024 (tets there have edges up to about
+    /// sqrt(3) times it); 0 = 8 voxels.
     double tet_size = 0;
     /// Partitioned meshing (paper Fig. 8), dense grids: > 0 cuts the domain into blocks of this
     /// many voxels per axis, meshes each block with a protective collar concurrently, then

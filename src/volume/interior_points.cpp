@@ -21,7 +21,10 @@ openvdb::CoordBBox plain_box(const octree::SampleField& field, const openvdb::Ma
 }
 
 /// The distance from G at which spacing 2^l starts: T_l = ceil((2^l - 1) / grading).
-double level_start(int l, double grading) { return std::ceil((std::ldexp(1.0, l) - 1) / grading); }
+double level_start(int l, double grading)
+{
+    return std::ceil((std::ldexp(1.0, l) - 1) / grading);
+}
 
 /// \p spacing with max_level lowered to the largest level some sample of \p box can be far
 /// enough from G for (T_l at most the box's extent): higher levels never occur, and rounding
@@ -31,7 +34,8 @@ GradedSpacing reachable(GradedSpacing spacing, const openvdb::CoordBBox& box)
     const openvdb::Coord dim = box.dim();
     const int extent = std::max({dim.x(), dim.y(), dim.z()});
     int l = 0;
-    while (l < spacing.max_level && level_start(l + 1, spacing.grading) <= extent) ++l;
+    while (l < spacing.max_level && level_start(l + 1, spacing.grading) <= extent)
+        ++l;
     spacing.max_level = l;
     return spacing;
 }
@@ -40,19 +44,27 @@ GradedSpacing reachable(GradedSpacing spacing, const openvdb::CoordBBox& box)
 /// T_l: outside it the spacing is at least 2^l. The zones grow by dilating G (26-neighbourhood:
 /// chessboard distance).
 /// \pre spacing == reachable(spacing, plain box): each dilation is bounded by the box's extent.
-std::vector<openvdb::MaskGrid::Ptr> spacing_zones(const openvdb::MaskGrid& g_mask, const GradedSpacing& spacing)
+/// Clipped to \p box after each dilation: what lies beyond holds no sample.
+std::vector<openvdb::MaskGrid::ConstPtr> spacing_zones(const openvdb::MaskGrid& g_mask, const GradedSpacing& spacing,
+                                                       const openvdb::CoordBBox& box)
 {
-    std::vector<openvdb::MaskGrid::Ptr> zones;
+    std::vector<openvdb::MaskGrid::ConstPtr> zones;
     openvdb::MaskGrid::Ptr grown = g_mask.deepCopy();
     int radius = 0; // grown = the voxels within this chessboard distance of G
     for (int l = 1; l <= spacing.max_level; ++l) {
         const int target = std::max(0, int(level_start(l, spacing.grading)) - 1);
-        if (target > radius) {
-            openvdb::tools::dilateActiveValues(grown->tree(), target - radius, openvdb::tools::NN_FACE_EDGE_VERTEX,
-                                               openvdb::tools::EXPAND_TILES);
-            radius = target;
+        if (target > radius || zones.empty()) {
+            if (target > radius) {
+                openvdb::tools::dilateActiveValues(grown->tree(), target - radius, openvdb::tools::NN_FACE_EDGE_VERTEX,
+                                                   openvdb::tools::EXPAND_TILES);
+                grown->clip(box);
+                radius = target;
+            }
+            zones.push_back(grown->deepCopy());
         }
-        zones.push_back(grown->deepCopy());
+        else {
+            zones.push_back(zones.back()); // the same zone: nothing new to copy
+        }
     }
     return zones;
 }
@@ -64,7 +76,9 @@ int graded_max_level(double tet_size, double voxel)
     if (tet_size <= 0) return 3;
     const double ratio = tet_size / voxel;
     if (!(ratio >= 2)) return 0;
-    return std::min(10, int(std::floor(std::log2(ratio))));
+    if (!(ratio < 1024)) return 10; // infinity included
+    // Slack for float32 voxel sizes (8.8 / 1.1f = 7.9999998 voxels is 8), far below a real difference.
+    return std::min(10, int(std::floor(std::log2(ratio) + 1e-6)));
 }
 
 openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
@@ -94,10 +108,11 @@ std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, co
     const openvdb::CoordBBox outer = volume_box(field, g_mask, spacing);
     const openvdb::CoordBBox box = want_out ? outer : field.domain();
     const openvdb::Coord anchor = outer.min();
-    std::vector<openvdb::MaskGrid::Ptr> zones;
-    if (spacing) zones = spacing_zones(g_mask, reachable(*spacing, plain_box(field, g_mask)));
+    std::vector<openvdb::MaskGrid::ConstPtr> zones;
+    if (spacing) zones = spacing_zones(g_mask, reachable(*spacing, plain_box(field, g_mask)), outer);
     std::vector<openvdb::MaskGrid::ConstAccessor> in_zone;
-    for (const auto& z : zones) in_zone.push_back(z->getConstAccessor());
+    for (const auto& z : zones)
+        in_zone.push_back(z->getConstAccessor());
     const octree::SampleField::Reader reader(field);
     const auto acc = g_mask.getConstAccessor();
     std::vector<openvdb::Coord> out;
@@ -106,12 +121,14 @@ std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, co
             for (int x = box.min().x(); x <= box.max().x(); ++x) {
                 const openvdb::Coord c(x, y, z);
                 if (acc.isValueOn(c)) continue;
-                // The lattice test first: it is the cheap one, and most samples fail it.
+                // c lies on the lattices of levels 0..k, k the number of trailing zero bits its
+                // offsets from the anchor share; it is kept when its own level is at most k, that
+                // is when it is in zone k (closer to G than where level k + 1 starts). One probe.
                 if (!in_zone.empty()) {
-                    int level = 0;
-                    while (level < int(in_zone.size()) && !in_zone[std::size_t(level)].isValueOn(c)) ++level;
-                    const int mask = (1 << level) - 1;
-                    if (((x - anchor.x()) | (y - anchor.y()) | (z - anchor.z())) & mask) continue;
+                    const unsigned bits = unsigned((x - anchor.x()) | (y - anchor.y()) | (z - anchor.z()));
+                    const std::size_t k =
+                        bits == 0 ? in_zone.size() : std::min<std::size_t>(in_zone.size(), __builtin_ctz(bits));
+                    if (k < in_zone.size() && !in_zone[k].isValueOn(c)) continue;
                 }
                 // phi is never 0 at a sample (octree/sample_field.h): "strictly" is automatic.
                 if (!(reader.phi(c) > 0 ? want_in : want_out)) continue;

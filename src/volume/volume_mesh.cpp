@@ -93,7 +93,8 @@ std::vector<Vertex_handle> insert_grid_points(Delaunay& dt, FacetCache& cache, c
     // empty, and each point of a raster row conflicts with cells spanning the whole row.
     std::vector<Point> pts;
     {
-        const std::vector<openvdb::Coord> gp = interior_points(field, g_mask, params.region, params.adaptive, params.spacing);
+        const std::vector<openvdb::Coord> gp =
+            interior_points(field, g_mask, params.region, params.adaptive, params.spacing);
         pts.reserve(gp.size());
         for (const auto& c : gp) {
             const auto w = field.index_to_world(c.asVec3d());

@@ -87,11 +87,15 @@ TEST_CASE("mesh --tets: --uniform-tets, --tet-size and --grading change the tets
     };
     const std::string graded = mesh("graded", ""), uniform = mesh("uniform", " --uniform-tets");
     const std::string small = mesh("small", " --tet-size 0.5 --grading 2");
+    const std::string gentle = mesh("gentle", " --grading 0.25");
     CHECK(read_text(tmp / "graded.ply") == read_text(tmp / "uniform.ply"));
     CHECK(read_text(tmp / "graded.ply") == read_text(tmp / "small.ply"));
+    CHECK(read_text(tmp / "graded.ply") == read_text(tmp / "gentle.ply"));
     CHECK(graded.size() < uniform.size());
+    CHECK(graded.size() < gentle.size()); // slower growth: more points
+    CHECK(gentle.size() < uniform.size());
     CHECK(small == uniform); // a largest spacing of one voxel (0.5) is every sample
-    for (const std::string bad : {" --grading 0", " --tet-size -1"}) {
+    for (const std::string bad : {" --grading 0", " --tet-size -1", " --uniform-tets --tet-size 2"}) {
         TempDir out;
         const RunResult r = run_isodel("mesh " + shell_quote(blobs()) + " -o " + shell_quote(out / "s.ply") +
                                            " --iso 0.5 --tets " + shell_quote(out / "t.mesh") + bad,

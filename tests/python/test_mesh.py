@@ -115,10 +115,10 @@ def test_graded_tets_keep_the_surface_with_fewer_points():
     ball = (14.0 - np.sqrt((x - 17.3) ** 2 + (y - 17.6) ** 2 + (z - 17.1) ** 2)).astype(np.float32)
     graded = isodel.mesh(ball, 0.0, tets="inside")
     uniform = isodel.mesh(ball, 0.0, tets="inside", tet_spacing="uniform")
-    coarse = isodel.mesh(ball, 0.0, tets="inside", tet_size=2.0)
+    finer = isodel.mesh(ball, 0.0, tets="inside", tet_size=2.0)  # 2 voxels at most, not 8
     np.testing.assert_array_equal(graded.triangles, uniform.triangles)
     np.testing.assert_array_equal(graded.vertices, uniform.vertices)
-    assert len(graded.tet_vertices) < len(coarse.tet_vertices) < len(uniform.tet_vertices)
+    assert len(graded.tet_vertices) < len(finer.tet_vertices) < len(uniform.tet_vertices)
     assert graded.stats["tets"]["volume_inside"] == pytest.approx(uniform.stats["tets"]["volume_inside"], rel=1e-9)
 
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 using namespace isodel;
@@ -18,21 +19,27 @@ using namespace isodel::mesher;
 
 namespace {
 
-/// A sphere of radius 11 voxels in a 34^3 grid, and a G made by hand: the samples within half
+/// A sphere of radius \p r voxels in an n^3 grid, and a G made by hand: the samples within half
 /// a voxel of the sphere. The rule is about distances to whatever G is, so any G serves.
 struct SphereSetup {
-    openvdb::FloatGrid::Ptr grid = testing::make_grid(
-        34, 1.0, openvdb::Vec3d(0.0), [](const openvdb::Vec3d& x) { return testing::sphere_f(x, {16.3, 16.1, 16.7}, 11.0); });
-    octree::SampleField field{grid, 0.0, Inside::Above};
+    int n;
+    double r;
+    openvdb::Vec3d centre;
+    openvdb::FloatGrid::Ptr grid;
+    octree::SampleField field;
     openvdb::MaskGrid::Ptr g = openvdb::MaskGrid::create();
     std::vector<openvdb::Coord> g_list;
-    SphereSetup()
+    explicit SphereSetup(int n_ = 34, double r_ = 11.0)
+        : n(n_), r(r_), centre(n_ / 2 - 0.7, n_ / 2 - 0.9, n_ / 2 - 0.3),
+          grid(testing::make_grid(n, 1.0, openvdb::Vec3d(0.0),
+                                  [this](const openvdb::Vec3d& x) { return testing::sphere_f(x, centre, r); })),
+          field(grid, 0.0, Inside::Above)
     {
         auto acc = g->getAccessor();
-        for (int z = 0; z < 34; ++z)
-            for (int y = 0; y < 34; ++y)
-                for (int x = 0; x < 34; ++x)
-                    if (std::abs(testing::sphere_f(openvdb::Vec3d(x, y, z), {16.3, 16.1, 16.7}, 11.0)) < 0.5) {
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    if (std::abs(testing::sphere_f(openvdb::Vec3d(x, y, z), centre, r)) < 0.5) {
                         acc.setValueOn({x, y, z});
                         g_list.push_back({x, y, z});
                     }
@@ -52,7 +59,8 @@ struct SphereSetup {
 int expected_level(int d, const GradedSpacing& s)
 {
     int l = 0;
-    while (l < s.max_level && std::ldexp(1.0, l + 1) <= 1 + s.grading * d) ++l;
+    while (l < s.max_level && std::ldexp(1.0, l + 1) <= 1 + s.grading * d)
+        ++l;
     return l;
 }
 
@@ -60,7 +68,11 @@ int expected_level(int d, const GradedSpacing& s)
 
 TEST_CASE("graded G' keeps exactly the samples on the lattice its distance to G asks for", "[tets][interior_points]")
 {
-    const SphereSetup s;
+    // A large sphere (deep inside) and a small one in a large box (far outside: chessboard
+    // distances up to 17, so the default's 8-voxel lattice, from 14 on, is reached).
+    const bool small = GENERATE(false, true);
+    const SphereSetup s = small ? SphereSetup(40, 6.0) : SphereSetup();
+    std::array<std::size_t, 4> per_level{}; // default spacing, outside, small sphere
     for (const GradedSpacing spacing : {GradedSpacing{0.5, 3}, GradedSpacing{1.0, 2}, GradedSpacing{0.25, 10}}) {
         for (const TetRegion region : {TetRegion::Inside, TetRegion::Outside}) {
             const auto uniform = interior_points(s.field, *s.g, region);
@@ -80,16 +92,25 @@ TEST_CASE("graded G' keeps exactly the samples on the lattice its distance to G 
                 CHECK(kept.count(c) == (on_lattice ? 1u : 0u));
                 ++checked;
                 coarse += level > 0;
+                if (small && region == TetRegion::Outside && spacing.grading == 0.5) ++per_level[std::size_t(level)];
             }
-            CHECK(checked > 1000);
-            CHECK(coarse > 0); // the rule was exercised beyond the finest lattice
+            // The small sphere's inside is a few hundred samples, all near G.
+            const bool few = small && region == TetRegion::Inside;
+            CHECK(checked > (few ? 100u : 1000u));
+            if (!few) CHECK(coarse > 0); // the rule was exercised beyond the finest lattice
             for (const auto& c : graded)
-                if (common.isInside(c)) CHECK(std::binary_search(uniform.begin(), uniform.end(), c,
-                                                                [](const openvdb::Coord& a, const openvdb::Coord& b) {
-                                                                    return std::make_tuple(a.z(), a.y(), a.x()) <
-                                                                           std::make_tuple(b.z(), b.y(), b.x());
-                                                                }));
+                if (common.isInside(c))
+                    CHECK(std::binary_search(
+                        uniform.begin(), uniform.end(), c, [](const openvdb::Coord& a, const openvdb::Coord& b) {
+                            return std::make_tuple(a.z(), a.y(), a.x()) < std::make_tuple(b.z(), b.y(), b.x());
+                        }));
         }
+    }
+    if (small) {
+        INFO("samples per level: " << per_level[0] << " " << per_level[1] << " " << per_level[2] << " "
+                                   << per_level[3]);
+        for (std::size_t l = 0; l < 4; ++l)
+            CHECK(per_level[l] > 0);
     }
 }
 
@@ -108,7 +129,8 @@ TEST_CASE("graded G' fills a box whose far faces hold lattice points, corners in
     const auto pts = interior_points(s.field, *s.g, TetRegion::Outside, nullptr, &spacing);
     const std::set<openvdb::Coord> kept(pts.begin(), pts.end());
     for (int corner = 0; corner < 8; ++corner) {
-        const openvdb::Coord c((corner & 1) ? box.max().x() : box.min().x(), (corner & 2) ? box.max().y() : box.min().y(),
+        const openvdb::Coord c((corner & 1) ? box.max().x() : box.min().x(),
+                               (corner & 2) ? box.max().y() : box.min().y(),
                                (corner & 4) ? box.max().z() : box.min().z());
         CHECK(kept.count(c) == 1);
     }
@@ -122,4 +144,6 @@ TEST_CASE("tet_size maps to the largest lattice level", "[tets][interior_points]
     CHECK(graded_max_level(0.5, 0.5) == 0);  // one voxel
     CHECK(graded_max_level(0.1, 0.5) == 0);  // below a voxel: the samples themselves
     CHECK(graded_max_level(1e9, 1.0) == 10); // clamped
+    CHECK(graded_max_level(std::numeric_limits<double>::infinity(), 1.0) == 10);
+    CHECK(graded_max_level(8.8, double(1.1f)) == 3); // a float32 voxel: 7.9999998 voxels is 8
 }

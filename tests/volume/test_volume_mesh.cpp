@@ -111,7 +111,7 @@ TEST_CASE("volume mesh: sphere, both regions fill the grid's box", "[mesher][vol
 
 TEST_CASE("volume mesh: graded G' keeps M and the volumes with fewer tets than uniform G'", "[mesher][volume_mesh]")
 {
-    // A sphere of radius 16 voxels: deep enough inside for the 2, 4 and 8 voxel lattices.
+    // A sphere of radius 16 voxels: deep enough inside for the 2 and 4 voxel lattices.
     const auto grid = testing::make_grid(40, 1.0, openvdb::Vec3d(0.0),
                                          [](const openvdb::Vec3d& x) { return testing::sphere_f(x, {19.3, 19.6, 19.2}, 16.0); });
     const MeshResult u = mesh_tets(*grid, 0.0, Inside::Above, TetRegion::Inside, 0, true, TetSpacing::Uniform);

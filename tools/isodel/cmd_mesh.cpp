@@ -34,6 +34,31 @@ struct MeshCliOptions {
     int adaptive_k = 1, adaptive_max_level = 5;
     std::string adaptive_grid;
 };
+
+/// The DELVOLMESH options (docs/tetrahedra.md).
+void add_tet_options(CLI::App& cmd, MeshCliOptions& o)
+{
+    cmd.add_option("--tets", o.tets, "Also write a tetrahedral mesh (.mesh, .vtu, .msh)");
+    cmd.add_option("--region", o.region, "Tetrahedra to keep: inside|outside|both")
+        ->check(CLI::IsMember({"inside", "outside", "both"}));
+    cmd.add_flag("--no-improve-tets", o.no_improve,
+                 "Keep the Delaunay tetrahedra (no smoothing or flips; M and the regions are the same either way)");
+    auto* size =
+        cmd.add_option("--tet-size", o.tet_size,
+                       "Largest spacing of the points added off M, world units (default 8 voxels; rounded down "
+                       "to a power of two voxels): tets grow from voxel size at M to this far from it")
+            ->check(CLI::NonNegativeNumber);
+    auto* grading =
+        cmd.add_option("--grading", o.grading,
+                       "Growth of the point spacing per voxel of distance from the protective layer around M "
+                       "(default 0.5)")
+            ->check(CLI::PositiveNumber);
+    cmd.add_flag("--uniform-tets", o.uniform_tets,
+                 "Add every sample off M (one tet size, the voxel's) instead of graded spacing")
+        ->excludes(size)
+        ->excludes(grading);
+}
+
 } // namespace
 
 void add_mesh_command(CLI::App& app, int& exit_code)
@@ -48,24 +73,11 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     auto* eps = cmd->add_option("--eps", o->eps, "Hausdorff bound in world units");
     cmd->add_option("--eps-voxels", o->eps_voxels, "Hausdorff bound in units of the smallest voxel edge (default 0.5)")
         ->excludes(eps);
-    cmd->add_option("--tets", o->tets, "Also write a tetrahedral mesh (.mesh, .vtu, .msh)");
-    cmd->add_option("--region", o->region, "Tetrahedra to keep: inside|outside|both")
-        ->check(CLI::IsMember({"inside", "outside", "both"}));
+    add_tet_options(*cmd, *o);
     cmd->add_option("--facet-angle", o->facet_angle,
                     "Also refine M's triangles to this smallest angle in degrees (0 = off; up to ~30), "
                     "after every guarantee holds")
         ->check(CLI::Range(0.0, 35.0));
-    cmd->add_flag("--no-improve-tets", o->no_improve,
-                  "Keep the Delaunay tetrahedra (no smoothing or flips; M and the regions are the same either way)");
-    cmd->add_option("--tet-size", o->tet_size,
-                    "Largest spacing of the points added off M, world units (default 8 voxels; rounded down "
-                    "to a power of two voxels): tets grow from voxel size at M to this far from it")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--grading", o->grading,
-                    "Growth of the point spacing per voxel of distance from M (default 0.5)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_flag("--uniform-tets", o->uniform_tets,
-                  "Add every sample off M (one tet size, the voxel's) instead of graded spacing");
     cmd->add_option("--threads", o->threads, "Threads (0 = all); the mesh does not depend on it");
     cmd->add_option("--stats", o->stats, "Write statistics as JSON");
     cmd->add_option("--max-rounds", o->max_rounds, "Bound on refinement rounds");
@@ -84,7 +96,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                   "Certified adaptive meshing: coarse cells where a certificate proves the coarse level set "
                   "isotopic to the input's and within a share of eps of it (docs/adaptive.md); the guarantees "
                   "hold against the input");
-    cmd->add_option("--adaptive-share", o->adaptive_share, "--adaptive: share of eps the coarsening may spend (default 0.5)")
+    cmd->add_option("--adaptive-share", o->adaptive_share,
+                    "--adaptive: share of eps the coarsening may spend (default 0.5)")
         ->check(CLI::Range(0.0, 1.0));
     cmd->add_option("--adaptive-k", o->adaptive_k, "--adaptive: level difference of touching cells (default 1)")
         ->check(CLI::Range(1, 4));
@@ -115,8 +128,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.certify = o->certify;
         mo.block_voxels = o->blocks;
         if (!o->tets.empty())
-            mo.tets = o->region == "both" ? TetRegion::Both
-                    : o->region == "outside" ? TetRegion::Outside : TetRegion::Inside;
+            mo.tets = o->region == "both"      ? TetRegion::Both
+                      : o->region == "outside" ? TetRegion::Outside
+                                               : TetRegion::Inside;
         mo.improve_tets = !o->no_improve;
         mo.tet_spacing = o->uniform_tets ? TetSpacing::Uniform : TetSpacing::Graded;
         mo.tet_size = o->tet_size;
@@ -128,7 +142,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.adaptive_max_level = o->adaptive_max_level;
         check_mesh_options(mo); // before any work
         if (!o->adaptive_grid.empty() && !mo.adaptive)
-            throw InvalidInput("--adaptive-grid " + o->adaptive_grid + ": needs --adaptive (the octree it writes is "
+            throw InvalidInput("--adaptive-grid " + o->adaptive_grid +
+                               ": needs --adaptive (the octree it writes is "
                                "the one --adaptive builds)");
 
         ProgressReporter progress(o->quiet, o->trace);
@@ -138,17 +153,18 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         check_isovalue(vol, o->iso);
         progress.end();
         const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        mo.inside = o->inside.empty() ? vol.default_inside
-                                      : (o->inside == "above" ? Inside::Above : Inside::Below);
+        mo.inside = o->inside.empty() ? vol.default_inside : (o->inside == "above" ? Inside::Above : Inside::Below);
         // An adaptive file (`isodel decimate`): mesh on its leaves (Property IV).
         if (vol.adaptive_levels > 1 && mo.adaptive)
-            throw InvalidInput(o->in.path + ": --adaptive needs the original volume, and this file is adaptive "
+            throw InvalidInput(o->in.path +
+                               ": --adaptive needs the original volume, and this file is adaptive "
                                "already (isodel decimate); mesh it without --adaptive, or mesh the original");
         MeshResult res;
         try {
             res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
                                           : mesh_isosurface(*vol.grid, mo, &progress);
-        } catch (const GuaranteeViolated& e) {
+        }
+        catch (const GuaranteeViolated& e) {
             throw GuaranteeViolated(o->in.path + ": " + e.what()); // name the file (exit status 1)
         }
 
@@ -168,27 +184,27 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         }
         if (!o->quiet) {
             std::cerr << "isodel mesh: wrote " << o->out << " (" << res.stats.vertices << " vertices, "
-                      << res.stats.triangles << " triangles, " << res.stats.components.size()
-                      << " components; genus";
-            for (const auto& c : res.stats.components) std::cerr << ' ' << c.genus;
+                      << res.stats.triangles << " triangles, " << res.stats.components.size() << " components; genus";
+            for (const auto& c : res.stats.components)
+                std::cerr << ' ' << c.genus;
             std::cerr << ")";
-            if (res.stats.certify_attempts > 0)
-                std::cerr << ", verified";
+            if (res.stats.certify_attempts > 0) std::cerr << ", verified";
             std::cerr << "\n";
             if (!o->tets.empty()) {
                 const TetStats& t = res.stats.tets;
-                std::cerr << "isodel mesh: wrote " << o->tets << " (" << t.vertices << " vertices, "
-                          << t.tets_inside << " inside + " << t.tets_outside << " outside tetrahedra; volume inside "
-                          << t.volume_inside << ", enclosed by the surface " << t.volume_enclosed_by_surface
-                          << ")\n  dihedral angles " << t.min_dihedral_deg << " .. " << t.max_dihedral_deg
-                          << " deg, max radius-edge ratio " << t.max_radius_edge << "; " << t.tets_below_10deg
+                std::cerr << "isodel mesh: wrote " << o->tets << " (" << t.vertices << " vertices, " << t.tets_inside
+                          << " inside + " << t.tets_outside << " outside tetrahedra; volume inside " << t.volume_inside
+                          << ", enclosed by the surface " << t.volume_enclosed_by_surface << ")\n  dihedral angles "
+                          << t.min_dihedral_deg << " .. " << t.max_dihedral_deg << " deg, max radius-edge ratio "
+                          << t.max_radius_edge << "; " << t.tets_below_10deg
                           << " tets under 10 deg\n  away from the surface (tets with no surface vertex): dihedral >= "
                           << t.min_dihedral_deg_off_surface << " deg, radius-edge <= " << t.max_radius_edge_off_surface
                           << "\n  improvement: smallest dihedral angle " << t.min_dihedral_deg_delaunay
                           << " deg before (Delaunay), " << t.vertices_moved << " vertices moved, " << t.vertices_removed
                           << " removed, " << t.vertices_inserted << " inserted, " << t.flips
                           << " flips\n  dihedral histogram (10 deg bins):";
-                for (auto n : t.dihedral_histogram) std::cerr << ' ' << n;
+                for (auto n : t.dihedral_histogram)
+                    std::cerr << ' ' << n;
                 std::cerr << "\n";
             }
         }

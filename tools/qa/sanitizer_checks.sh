@@ -6,8 +6,8 @@
 # 2. ThreadSanitizer: the tests labelled "tsan" (the parallel stages, at 1 and 2 threads).
 # Each build is a unity build of only the targets its tests need: no benchmarks, no Python module,
 # no test file it does not run (ISODEL_TEST_SUBSET, tests/CMakeLists.txt). Needs clang,
-# libclang-rt-14-dev and dpkg-dev (the README's install line). The run options (halt on the first report, suppressions) are CTest's
-# ISODEL_SANITIZER_ENV, set in cmake/Sanitize.cmake.
+# libclang-rt-14-dev and dpkg-dev (the README's install line). The run options (halt on the
+# first report, suppressions) are CTest's ISODEL_SANITIZER_ENV, set in cmake/Sanitize.cmake.
 set -e
 prefix=${1:-build-}
 jobs=$(nproc)
