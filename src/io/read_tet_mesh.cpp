@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace isodel {
@@ -38,8 +39,14 @@ TetMesh read_tet_mesh(const std::string& path)
         if (i < 1 || std::size_t(i) > nv) io::invalid(path, "vertex index " + std::to_string(i) + " out of range");
         return std::int32_t(i - 1);
     };
+    // Each section once: a second Vertices section would replace the vertices the earlier
+    // sections' indices were checked against (a fuzz finding), and a second Triangles or
+    // Tetrahedra section would silently drop the first.
+    std::set<std::string> seen;
     while (in >> word) {
         if (word == "End") break;
+        if ((word == "Vertices" || word == "Triangles" || word == "Tetrahedra") && !seen.insert(word).second)
+            io::invalid(path, "section " + word + " appears twice");
         if (word == "MeshVersionFormatted" || word == "Dimension") {
             in >> word;
         } else if (word == "Vertices") {

@@ -43,6 +43,22 @@ TEST_CASE("fuzz finding: a Medit count the file cannot hold is refused before al
     CHECK_THROWS_WITH(read_tet_mesh(q), Catch::StartsWith(q));
 }
 
+TEST_CASE("fuzz finding: a Medit section given twice is refused", "[io][fuzz]")
+{
+    // fuzz_read_tet_mesh (30-minute run): a second Vertices section with fewer vertices after the
+    // Tetrahedra left tet indices beyond the vertex array the reader returned.
+    TempDir dir;
+    const std::string p = dir / "vertices_twice.mesh";
+    write_bytes(p, "Dimension 3\nVertices\n4\n0 0 0 5\n1 0 0 0\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n"
+                   "Vertices\n2\n0 0 0 0\n1 0 0 0\nEnd\n");
+    CHECK_THROWS_WITH(read_tet_mesh(p), Catch::StartsWith(p) && Catch::Contains("section Vertices appears twice"));
+    CHECK_THROWS_AS(read_tet_mesh(p), InvalidInput);
+    const std::string q = dir / "tets_twice.mesh";
+    write_bytes(q, "Dimension 3\nVertices\n4\n0 0 0 5\n1 0 0 0\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 1\n"
+                   "Tetrahedra\n1\n1 2 4 3 1\nEnd\n");
+    CHECK_THROWS_WITH(read_tet_mesh(q), Catch::StartsWith(q) && Catch::Contains("section Tetrahedra appears twice"));
+}
+
 TEST_CASE("fuzz finding: surface meshes with non-finite vertices or impossible counts are refused", "[io][fuzz]")
 {
     TempDir dir;
