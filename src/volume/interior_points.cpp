@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace isodel::mesher {
 namespace {
@@ -81,20 +82,27 @@ int graded_max_level(double tet_size, double voxel)
     return std::min(10, int(std::floor(std::log2(ratio) + 1e-6)));
 }
 
+namespace {
+
+/// \p box with its extent rounded up to a multiple of 2^max_level.
+openvdb::CoordBBox rounded_box(const openvdb::CoordBBox& box, int max_level)
+{
+    const int step = 1 << max_level;
+    openvdb::Coord hi = box.max();
+    for (int a = 0; a < 3; ++a) {
+        const int span = hi[a] - box.min()[a];
+        hi[a] = box.min()[a] + (span + step - 1) / step * step;
+    }
+    return openvdb::CoordBBox(box.min(), hi);
+}
+
+} // namespace
+
 openvdb::CoordBBox volume_box(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
                               const GradedSpacing* spacing)
 {
-    openvdb::CoordBBox box = plain_box(field, g_mask);
-    if (spacing) {
-        const int step = 1 << reachable(*spacing, box).max_level;
-        openvdb::Coord hi = box.max();
-        for (int a = 0; a < 3; ++a) {
-            const int span = hi[a] - box.min()[a];
-            hi[a] = box.min()[a] + (span + step - 1) / step * step;
-        }
-        box = openvdb::CoordBBox(box.min(), hi);
-    }
-    return box;
+    const openvdb::CoordBBox box = plain_box(field, g_mask);
+    return spacing ? rounded_box(box, reachable(*spacing, box).max_level) : box;
 }
 
 std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, const openvdb::MaskGrid& g_mask,
@@ -105,11 +113,15 @@ std::vector<openvdb::Coord> interior_points(const octree::SampleField& field, co
     const bool want_out = region == TetRegion::Outside || region == TetRegion::Both;
     if (adaptive) spacing = nullptr;
     // Inside points lie in the domain (beyond it phi < 0); outside points fill the whole box.
-    const openvdb::CoordBBox outer = volume_box(field, g_mask, spacing);
+    // The same box and levels as volume_box, computed once here.
+    const openvdb::CoordBBox plain = plain_box(field, g_mask);
+    const std::optional<GradedSpacing> levels =
+        spacing ? std::optional<GradedSpacing>(reachable(*spacing, plain)) : std::nullopt;
+    const openvdb::CoordBBox outer = levels ? rounded_box(plain, levels->max_level) : plain;
     const openvdb::CoordBBox box = want_out ? outer : field.domain();
     const openvdb::Coord anchor = outer.min();
     std::vector<openvdb::MaskGrid::ConstPtr> zones;
-    if (spacing) zones = spacing_zones(g_mask, reachable(*spacing, plain_box(field, g_mask)), outer);
+    if (levels) zones = spacing_zones(g_mask, *levels, outer);
     std::vector<openvdb::MaskGrid::ConstAccessor> in_zone;
     for (const auto& z : zones)
         in_zone.push_back(z->getConstAccessor());
