@@ -3,6 +3,7 @@
 
 #include <isodel/errors.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <unistd.h>
 
@@ -106,19 +107,38 @@ void save_adaptive(const std::string& path, const AdaptiveVolume& v)
 AdaptiveVolume load_adaptive(const std::string& path)
 {
     check_vdb_file_layout(path); // before OpenVDB allocates what the file states
-    openvdb::GridPtrVec grids;
+    openvdb::GridBase::Ptr base;
+    std::vector<openvdb::GridBase::Ptr> level_grids; // level l at l - 1; null when absent
     try {
         openvdb::io::File f(path);
-        f.open();
-        grids = *f.getGrids();
+        f.open(/*delayLoad=*/false); // delayed loading would read leaf data apart from the check
+        const auto metas = f.readAllGridMetadata();
+        const auto sample_meta = find_samples(*metas);
+        if (!sample_meta) throw InvalidInput(path + ": not an isodel adaptive file (no isodel_adaptive metadata)");
+        // Only the sample grid and the level masks are read, each of a type the check walked.
+        // File::readGrid(name) reads the first grid of that name.
+        const auto read_checked = [&](const std::string& name) -> openvdb::GridBase::Ptr {
+            for (const auto& m : *metas)
+                if (m->getName() == name) {
+                    if (!vdb_grid_type_checked(m->type()))
+                        throw InvalidInput(path + ": grid " + name + " has type " + m->type() +
+                                           ", which an isodel adaptive file does not hold");
+                    return f.readGrid(name);
+                }
+            return nullptr;
+        };
+        base = read_checked(sample_meta->getName());
+        const int levels = meta_or<int, openvdb::Int32Metadata>(*sample_meta, "isodel_levels", 1);
+        for (int l = 1; l < std::min(levels, AdaptiveGrid::kMaxLevel + 1); ++l)
+            level_grids.push_back(read_checked(level_name(l)));
         f.close();
+    } catch (const isodel::Error&) {
+        throw;
     } catch (const std::exception& e) {
         throw IoError(path + ": cannot read: " + e.what());
     }
-    auto base = find_samples(grids);
-    if (!base) throw InvalidInput(path + ": not an isodel adaptive file (no isodel_adaptive metadata)");
     auto s = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (!s) throw InvalidInput(path + ": adaptive sample grid is not a float grid");
+    if (!s || !is_adaptive_sample_grid(*s)) throw InvalidInput(path + ": adaptive sample grid is not a float grid");
     AdaptiveVolume v;
     v.samples = s;
     v.k = meta_or<int, openvdb::Int32Metadata>(*s, "isodel_k", 1);
@@ -131,16 +151,37 @@ AdaptiveVolume load_adaptive(const std::string& path)
         throw InvalidInput(path + ": inconsistent isodel adaptive metadata");
     v.domain = CoordBBox(to_coord(dmin->value()), to_coord(dmax->value()));
     v.levels.assign(levels, nullptr);
-    for (const auto& g : grids)
-        for (int l = 1; l < levels; ++l)
-            if (g && g->getName() == level_name(l)) {
-                auto m = openvdb::gridPtrCast<openvdb::MaskGrid>(g);
-                if (!m) throw InvalidInput(path + ": grid " + level_name(l) + " is not a mask grid");
-                v.levels[l] = m;
-            }
-    for (int l = 1; l < levels; ++l)
-        if (!v.levels[l]) throw InvalidInput(path + ": missing grid " + level_name(l));
+    for (int l = 1; l < levels; ++l) {
+        const auto g = std::size_t(l - 1) < level_grids.size() ? level_grids[l - 1] : nullptr;
+        if (!g) throw InvalidInput(path + ": missing grid " + level_name(l));
+        v.levels[l] = openvdb::gridPtrCast<openvdb::MaskGrid>(g);
+        if (!v.levels[l]) throw InvalidInput(path + ": grid " + level_name(l) + " is not a mask grid");
+    }
     return v;
+}
+
+openvdb::GridBase::Ptr read_importance_grid(const std::string& path)
+{
+    check_vdb_file_layout(path); // before OpenVDB allocates what the file states
+    try {
+        openvdb::io::File f(path);
+        f.open(/*delayLoad=*/false);
+        const auto metas = f.readAllGridMetadata();
+        if (metas->empty()) throw InvalidInput(path + ": no grids");
+        // The grid OpenVDB lists first (it lists grids by name); File::readGrid(name) reads
+        // the first grid of that name.
+        const auto& first = metas->front();
+        if (!vdb_grid_type_checked(first->type()))
+            throw InvalidInput(path + ": importance grid '" + first->getName() + "' has type " + first->type() +
+                               " (isodel reads mask, bool, float, double and int32 grids)");
+        auto g = f.readGrid(first->getName());
+        f.close();
+        return g;
+    } catch (const isodel::Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw IoError(path + ": cannot read: " + e.what());
+    }
 }
 
 std::optional<AdaptiveInfo> adaptive_info(const std::string& path)
@@ -148,7 +189,7 @@ std::optional<AdaptiveInfo> adaptive_info(const std::string& path)
     try {
         check_vdb_file_layout(path); // before OpenVDB allocates what the file states
         openvdb::io::File f(path);
-        f.open();
+        f.open(/*delayLoad=*/false);
         const auto metas = f.readAllGridMetadata();
         auto base = find_samples(*metas);
         if (!base) return std::nullopt;
@@ -166,6 +207,8 @@ std::optional<AdaptiveInfo> adaptive_info(const std::string& path)
         std::uint64_t covered = 0;
         for (int l = 1; l < info.levels; ++l) {
             if (!f.hasGrid(level_name(l))) return std::nullopt;
+            const auto level_meta = f.readGridMetadata(level_name(l));
+            if (!level_meta || !vdb_grid_type_checked(level_meta->type())) return std::nullopt;
             info.histogram[l] = f.readGrid(level_name(l))->activeVoxelCount();
             covered += info.histogram[l] << (3 * l);
         }

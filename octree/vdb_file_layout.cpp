@@ -1,82 +1,23 @@
 #include "octree/vdb_file_layout.h"
 
+#include "octree/vdb_layout_reader.h"
+#include "octree/vdb_tree_layout.h"
+
 #include <isodel/errors.h>
 
 #include <openvdb/Metadata.h>
 #include <openvdb/io/DelayedLoadMetadata.h>
+#include <openvdb/io/GridDescriptor.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/version.h>
 
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <vector>
 
 namespace isodel::octree {
 namespace {
-
-/// Reads the little-endian fields of the file as OpenVDB's reader does, each checked against
-/// the file's size before it is read or skipped.
-class LayoutReader {
-public:
-    explicit LayoutReader(const std::string& path) : path_(path), in_(path, std::ios::binary)
-    {
-        if (!in_) throw IoError(path + ": cannot open for reading");
-        in_.seekg(0, std::ios::end);
-        size_ = std::uint64_t(std::streamoff(in_.tellg()));
-        in_.seekg(0);
-    }
-
-    [[noreturn]] void refuse(const std::string& why) const
-    {
-        throw InvalidInput(path_ + ": not a readable OpenVDB file: " + why);
-    }
-    std::uint64_t size() const { return size_; }
-    std::uint64_t pos() const { return pos_; }
-    std::uint64_t left() const { return size_ - pos_; }
-
-    void need(std::uint64_t bytes, const char* what) const
-    {
-        if (bytes > left())
-            refuse(std::string(what) + " needs " + std::to_string(bytes) + " bytes at offset " + std::to_string(pos_) +
-                   ", the file has " + std::to_string(left()) + " more (truncated or corrupt)");
-    }
-    template <class T>
-    T read(const char* what)
-    {
-        need(sizeof(T), what);
-        T v;
-        in_.read(reinterpret_cast<char*>(&v), sizeof(T));
-        pos_ += sizeof(T);
-        return v;
-    }
-    void skip(std::uint64_t bytes, const char* what)
-    {
-        need(bytes, what);
-        pos_ += bytes;
-        in_.seekg(std::streamoff(pos_));
-    }
-    /// openvdb::readString: a uint32 length, then the characters.
-    std::string string(const char* what)
-    {
-        const auto n = read<std::uint32_t>(what);
-        need(n, what);
-        std::string s(n, '\0');
-        in_.read(s.data(), n);
-        pos_ += n;
-        return s;
-    }
-    void seek(std::uint64_t offset)
-    {
-        pos_ = offset;
-        in_.seekg(std::streamoff(offset));
-    }
-
-private:
-    std::string path_;
-    std::ifstream in_;
-    std::uint64_t size_ = 0;
-    std::uint64_t pos_ = 0;
-};
 
 /// One array of openvdb::io::DelayedLoadMetadata::readValue: a uint32 byte count, then a Blosc
 /// buffer of that many bytes, or (count 0) \p count raw elements of \p element bytes. OpenVDB
@@ -140,6 +81,12 @@ void skip_metadata(LayoutReader& r, const char* what)
             skip_delayed_load(r, bytes, what);
             continue;
         }
+        if (type == openvdb::BoolMetadata::staticTypeName() && bytes == 1) {
+            // BoolMetadata reads the byte as a bool: only 0 and 1 are bools.
+            const auto b = r.read<std::uint8_t>(what);
+            if (b > 1) r.refuse(std::string(what) + ": metadata '" + name + "' is a bool stored as " + std::to_string(b));
+            continue;
+        }
         if (type != openvdb::StringMetadata::staticTypeName() && openvdb::Metadata::isRegisteredType(type)) {
             const auto expected = openvdb::Metadata::createMetadata(type)->size();
             if (bytes != expected)
@@ -150,7 +97,107 @@ void skip_metadata(LayoutReader& r, const char* what)
     }
 }
 
+/// A grid descriptor as GridDescriptor::read reads it.
+struct Descriptor {
+    std::string unique_name;
+    std::string type; ///< without the "_HalfFloat" suffix
+    bool half = false;
+    std::string parent; ///< the instance parent's unique name; empty for a grid with its own tree
+    std::int64_t grid_pos = 0, block_pos = 0, end_pos = 0;
+};
+
+Descriptor read_descriptor(LayoutReader& r)
+{
+    Descriptor d;
+    d.unique_name = r.string("a grid descriptor");
+    d.type = r.string("a grid descriptor");
+    const std::string half_suffix = "_HalfFloat"; // GridDescriptor.cc, not exported
+    if (d.type.size() > half_suffix.size() &&
+        d.type.compare(d.type.size() - half_suffix.size(), half_suffix.size(), half_suffix) == 0) {
+        d.half = true;
+        d.type.resize(d.type.size() - half_suffix.size());
+    }
+    d.parent = r.string("a grid descriptor"); // format 216 and later: the instance parent
+    d.grid_pos = r.read<std::int64_t>("a grid descriptor");
+    d.block_pos = r.read<std::int64_t>("a grid descriptor");
+    d.end_pos = r.read<std::int64_t>("a grid descriptor");
+    return d;
+}
+
+/// Archive::readGrid from the grid's start: its compression flags, metadata, transform, and
+/// (unless it shares an instance parent's tree) its tree. \p data_start bounds the metadata when
+/// the descriptor states where the grid's data begins.
+void walk_grid(LayoutReader& r, const Descriptor& d, const VdbTreeKind& kind, std::uint64_t data_start)
+{
+    VdbGridStream stream;
+    stream.half = d.half;
+    stream.compression = r.read<std::uint32_t>("a grid's compression flags");
+    skip_metadata(r, "a grid's metadata");
+    if (r.pos() > data_start) r.refuse("grid '" + d.unique_name + "': its metadata runs past the start of its data");
+    skip_vdb_transform(r, d.unique_name);
+    if (d.parent.empty()) skip_vdb_tree(r, kind, stream, d.unique_name);
+}
+
+/// A file written as a stream has no grid offsets: File::open reads every grid, one after the
+/// other, so every one must be of a type whose data the walk checks.
+void walk_stream_grids(LayoutReader& r, std::int32_t grids)
+{
+    for (std::int32_t g = 0; g < grids; ++g) {
+        const Descriptor d = read_descriptor(r);
+        const auto kind = vdb_tree_kind(d.type);
+        if (!kind)
+            r.refuse("grid '" + d.unique_name + "' has type " + d.type +
+                     ", whose data isodel cannot check, in a file without grid offsets (which OpenVDB reads whole)");
+        walk_grid(r, d, *kind, r.size());
+    }
+}
+
+/// A file with grid offsets: OpenVDB reads a grid when asked, from its descriptor's offset. The
+/// grids of a type the walk knows are walked; an instance's parent (which OpenVDB reads in its
+/// place, found by name) must be such a grid of the same type.
+void walk_indexed_grids(LayoutReader& r, std::int32_t grids)
+{
+    std::vector<Descriptor> all;
+    for (std::int32_t g = 0; g < grids; ++g) {
+        // GridDescriptor::read, then File::readGridDescriptors' seek to the grid's end.
+        Descriptor d = read_descriptor(r);
+        const std::uint64_t header_end = r.pos();
+        // An instance has no data blocks of its own: Archive::writeGridInstance leaves its block
+        // offset 0, and it is never read.
+        const bool instance = !d.parent.empty();
+        if (d.grid_pos < std::int64_t(header_end) || d.end_pos < d.grid_pos || std::uint64_t(d.end_pos) > r.size() ||
+            (!instance && (d.block_pos < d.grid_pos || d.end_pos < d.block_pos)))
+            r.refuse("grid '" + d.unique_name + "' states offsets " + std::to_string(d.grid_pos) + ", " +
+                     std::to_string(d.block_pos) + ", " + std::to_string(d.end_pos) + " outside its descriptor's end " +
+                     std::to_string(header_end) + " and the file's " + std::to_string(r.size()) +
+                     " bytes (truncated or corrupt)");
+        r.seek(std::uint64_t(d.end_pos));
+        all.push_back(std::move(d));
+    }
+    for (const Descriptor& d : all) {
+        const auto kind = vdb_tree_kind(d.type);
+        if (!kind) continue; // isodel's readers never ask OpenVDB for it (vdb_grid_type_checked)
+        r.seek(std::uint64_t(d.grid_pos));
+        walk_grid(r, d, *kind, std::uint64_t(d.parent.empty() ? d.block_pos : d.end_pos));
+        if (r.pos() > std::uint64_t(d.end_pos))
+            r.refuse("grid '" + d.unique_name + "': its data runs past the end its descriptor states");
+        if (d.parent.empty()) continue;
+        // File::findDescriptor looks the parent up by name, then by name without its "[N]"
+        // suffix: every grid either lookup could return must have the instance's type.
+        using openvdb::io::GridDescriptor;
+        const std::string name = GridDescriptor::nameAsString(d.parent);
+        const std::string stripped = GridDescriptor::stripSuffix(GridDescriptor::stringAsUniqueName(name));
+        for (const Descriptor& p : all)
+            if (const std::string key = GridDescriptor::stripSuffix(p.unique_name);
+                (key == name || key == stripped) && p.type != d.type)
+                r.refuse("grid '" + d.unique_name + "' of type " + d.type + " is an instance of '" + p.unique_name +
+                         "', of type " + p.type);
+    }
+}
+
 } // namespace
+
+bool vdb_grid_type_checked(const std::string& grid_type) { return vdb_tree_kind(grid_type).has_value(); }
 
 void check_vdb_file_layout(const std::string& path)
 {
@@ -160,44 +207,22 @@ void check_vdb_file_layout(const std::string& path)
     if (r.size() < 8 || r.read<std::int64_t>("the magic number") != openvdb::OPENVDB_MAGIC)
         r.refuse("wrong magic number");
     const auto version = r.read<std::uint32_t>("the header");
-    if (version < openvdb::OPENVDB_FILE_VERSION_FLOAT_FRUSTUM_BBOX || version > openvdb::OPENVDB_FILE_VERSION)
-        r.refuse("file format version " + std::to_string(version) + " (this OpenVDB reads " +
-                 std::to_string(openvdb::OPENVDB_FILE_VERSION_FLOAT_FRUSTUM_BBOX) + " to " +
+    // The node formats walked here are those of format 222 (OpenVDB 2.0) and later.
+    if (version < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION || version > openvdb::OPENVDB_FILE_VERSION)
+        r.refuse("file format version " + std::to_string(version) + " (isodel reads " +
+                 std::to_string(openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) + " to " +
                  std::to_string(openvdb::OPENVDB_FILE_VERSION) + ")");
     r.skip(8, "the header"); // library major and minor version
     const bool has_grid_offsets = r.read<char>("the header") != 0;
-    if (version < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) r.skip(1, "the header"); // compression flag
     r.skip(36, "the header"); // the UUID as text
     skip_metadata(r, "the file metadata");
     const auto grids = r.read<std::int32_t>("the grid count");
-    // Without offsets (a file written as a stream) the grids follow one another, and OpenVDB
-    // reads them whole when it opens the file: there are no descriptors to check.
-    if (!has_grid_offsets) return;
     if (grids < 0 || std::uint64_t(grids) > r.left() / 36) // three strings and three offsets each
         r.refuse(std::to_string(grids) + " grids cannot fit in the file");
-    for (std::int32_t g = 0; g < grids; ++g) {
-        // GridDescriptor::read, then File::readGridDescriptors' seek to the grid's end.
-        const std::string name = r.string("a grid descriptor");
-        r.string("a grid descriptor"); // type
-        if (version >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING) r.string("a grid descriptor");
-        const std::uint64_t header_end = r.pos() + 24;
-        const auto grid_pos = r.read<std::int64_t>("a grid descriptor");
-        const auto block_pos = r.read<std::int64_t>("a grid descriptor");
-        const auto end_pos = r.read<std::int64_t>("a grid descriptor");
-        if (grid_pos < std::int64_t(header_end) || block_pos < grid_pos || end_pos < block_pos ||
-            std::uint64_t(end_pos) > r.size())
-            r.refuse("grid '" + name + "' states offsets " + std::to_string(grid_pos) + ", " +
-                     std::to_string(block_pos) + ", " + std::to_string(end_pos) + " outside its descriptor's end " +
-                     std::to_string(header_end) + " and the file's " + std::to_string(r.size()) +
-                     " bytes (truncated or corrupt)");
-        // Archive::readGrid: the compression flags, then the grid's metadata, before its blocks.
-        r.seek(std::uint64_t(grid_pos));
-        if (version >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) r.skip(4, "a grid's compression flags");
-        skip_metadata(r, "a grid's metadata");
-        if (r.pos() > std::uint64_t(block_pos))
-            r.refuse("grid '" + name + "': its metadata runs past the start of its data");
-        r.seek(std::uint64_t(end_pos));
-    }
+    if (has_grid_offsets)
+        walk_indexed_grids(r, grids);
+    else
+        walk_stream_grids(r, grids);
 }
 
 } // namespace isodel::octree

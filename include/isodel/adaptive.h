@@ -65,6 +65,11 @@ void save_adaptive(const std::string& path, const AdaptiveVolume& volume);
 /// \throw IoError unreadable; InvalidInput not an isodel adaptive file
 AdaptiveVolume load_adaptive(const std::string& path);
 
+/// The grid of a .vdb file that DecimateOptions::importance takes: the one OpenVDB lists first
+/// (by name). The file is checked before OpenVDB reads it, as every isodel reader does.
+/// \throw IoError unreadable; InvalidInput corrupt, no grid, or a grid type isodel does not read
+openvdb::GridBase::Ptr read_importance_grid(const std::string& path);
+
 /// What `isodel info` prints for an adaptive file; nullopt when \p path is not one (or
 /// unreadable). Reads metadata and masks only, not the samples.
 struct AdaptiveInfo {

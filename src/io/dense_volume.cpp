@@ -165,6 +165,18 @@ void finish_volume(Volume& vol)
     const auto& tree = vol.grid->tree();
     if (tree.activeVoxelCount() == 0) invalid(vol.path, "empty grid '" + vol.grid->getName() + "' (no active voxels)");
     vol.lattice = vol.grid->evalActiveVoxelBoundingBox();
+    // A .vdb's transform is the file's: the dense readers check their voxel sizes, OpenVDB's
+    // map readers check nothing, and a zero, NaN or infinite voxel or origin leaves no world
+    // coordinates for the mesh.
+    const auto& xf = vol.grid->transform();
+    const openvdb::Vec3d voxel = xf.voxelSize(), origin = xf.indexToWorld(openvdb::Vec3d(0.0));
+    for (int a = 0; a < 3; ++a)
+        if (!(voxel[a] > 0) || !std::isfinite(voxel[a]) || !std::isfinite(origin[a])) {
+            std::ostringstream why;
+            why << "grid '" << vol.grid->getName() << "' has a transform without a finite, positive voxel size "
+                << "and a finite origin (axis " << a << ": voxel " << voxel[a] << ", origin " << origin[a] << ")";
+            invalid(vol.path, why.str());
+        }
     const float bg = tree.background();
     if (!std::isfinite(bg)) invalid(vol.path, "non-finite background value in grid '" + vol.grid->getName() + "'");
     float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();

@@ -88,6 +88,41 @@ void volume_seeds(const fs::path& out, const fs::path& data)
     write_vdb((out / "fuzz_read_vdb" / "sphere.vdb").string(), {sphere});
 }
 
+/// Small .vdb files that reach every node reader within a few bytes: a partly active leaf and
+/// tiles at both internal levels, in each compression, as half floats, as a double grid, with
+/// an instance, and written as a stream (no grid offsets).
+void small_vdb_seeds(const fs::path& out)
+{
+    auto g = openvdb::FloatGrid::create(-1.f);
+    g->setName("f");
+    for (int k = 0; k < 5; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 5; ++i) g->tree().setValue({i, j, k}, float(i - 2.5));
+    g->tree().setValueOff({7, 7, 7}, 2.f);
+    g->tree().addTile(1, {64, 0, 0}, 1.f, true);
+    g->tree().addTile(2, {0, 1024, 0}, 3.f, false);
+    const auto write_file = [&](const std::string& name, const openvdb::GridPtrVec& grids, std::uint32_t compression) {
+        openvdb::io::File f((out / "fuzz_read_vdb" / name).string());
+        f.setCompression(compression);
+        f.write(grids);
+    };
+    using namespace openvdb::io;
+    write_file("small_none.vdb", {g}, COMPRESS_NONE);
+    write_file("small_zip.vdb", {g}, COMPRESS_ZIP);
+    write_file("small_zip_mask.vdb", {g}, COMPRESS_ZIP | COMPRESS_ACTIVE_MASK);
+    write_file("small_blosc_mask.vdb", {g}, COMPRESS_BLOSC | COMPRESS_ACTIVE_MASK);
+    auto half = g->deepCopy();
+    half->setSaveFloatAsHalf(true);
+    write_file("small_half.vdb", {half}, COMPRESS_BLOSC | COMPRESS_ACTIVE_MASK);
+    auto d = openvdb::DoubleGrid::create(0.5);
+    d->setName("d");
+    for (int i = 0; i < 9; ++i) d->tree().setValue({i, 2 * i, 1}, 0.25 * i);
+    auto instance = g->copyGrid();
+    instance->setName("instance");
+    write_file("small_double_instance.vdb", {d, g, instance}, COMPRESS_ZIP | COMPRESS_ACTIVE_MASK);
+    write_vdb((out / "fuzz_read_vdb" / "small_stream.vdb").string(), {g});
+}
+
 void adaptive_seeds(const fs::path& out)
 {
     auto grid = openvdb::FloatGrid::create(0.f);
@@ -146,6 +181,7 @@ int main(int argc, char** argv)
     openvdb::initialize();
     const fs::path out = argv[1];
     volume_seeds(out, argv[2]);
+    small_vdb_seeds(out);
     adaptive_seeds(out);
     mesh_seeds(out);
     return 0;

@@ -9,6 +9,7 @@
 #include <isodel/volume.h>
 
 #include <catch2/catch.hpp>
+#include <openvdb/openvdb.h>
 
 #include <cstring>
 #include <limits>
@@ -118,4 +119,43 @@ TEST_CASE("fuzz finding: PLY and OFF records the file cannot hold are refused be
                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
                     "3 0 1 2\n");
     CHECK(read_surface_mesh(ok).triangles.size() == 1);
+}
+
+TEST_CASE("fuzz finding: a VDB chunk longer than its node is refused before OpenVDB reads it", "[io][fuzz]")
+{
+    // fuzz_read_vdb and fuzz_load_adaptive: an internal node's chunk states more uncompressed
+    // bytes than the node holds; OpenVDB's bloscFromStream read them into the node's buffer (a
+    // heap overflow) before comparing. The tree walk of octree/vdb_tree_layout.h refuses it.
+    const std::string p = std::string(ISODEL_TEST_DATA) + "/../fuzz/findings/openvdb_blosc_overflow_read_vdb.vdb";
+    CHECK_THROWS_WITH(read_volume(p), Catch::StartsWith(p + ": not a readable OpenVDB file: grid ") &&
+                                          Catch::Contains("an uncompressed chunk states"));
+    CHECK_THROWS_AS(read_volume(p), InvalidInput);
+}
+
+TEST_CASE("fuzz finding: a VDB transform with a negative voxel size is refused", "[io][fuzz]")
+{
+    // fuzz_read_vdb: a ScaleMap stores its voxel size beside its scale, and OpenVDB reads both as
+    // they are; a negative one reached the mesher's world coordinates.
+    openvdb::initialize();
+    TempDir dir;
+    auto g = openvdb::FloatGrid::create(1.0f);
+    g->setName("s");
+    for (int i = 0; i < 4; ++i) g->tree().setValue(openvdb::Coord(i, 0, 0), float(i));
+    g->setTransform(openvdb::math::Transform::createLinearTransform(openvdb::math::scale<openvdb::Mat4d>(openvdb::Vec3d(2, 3, 4))));
+    const std::string ok = dir / "ok.vdb";
+    openvdb::io::File(ok).write({g});
+    std::string bytes = read_text(ok);
+    const std::string map("\x08\0\0\0ScaleMap", 12);
+    const std::size_t at = bytes.find(map);
+    REQUIRE(at != std::string::npos);
+    double voxel = 0;
+    std::memcpy(&voxel, &bytes[at + map.size() + 24], 8); // after the scale: the voxel size
+    REQUIRE(voxel == 2.0);
+    voxel = -2.0;
+    std::memcpy(&bytes[at + map.size() + 24], &voxel, 8);
+    const std::string p = dir / "negative_voxel.vdb";
+    write_bytes(p, bytes);
+    CHECK(read_volume(ok).value_max == 3.0f);
+    CHECK_THROWS_WITH(read_volume(p), Catch::StartsWith(p + ": ") && Catch::Contains("voxel -2"));
+    CHECK_THROWS_AS(read_volume(p), InvalidInput);
 }

@@ -7,6 +7,7 @@
 #include <isodel/errors.h>
 
 #include <catch2/catch.hpp>
+#include <openvdb/points/PointDataGrid.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -85,5 +86,60 @@ TEST_CASE("save -> load is exact; info reports levels, k, histogram", "[octree][
     REQUIRE(info);
     CHECK(info->levels == 1);
     CHECK(info->cells == 5u * 5u * 5u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("load_adaptive and read_importance_grid read only grids the file check walked", "[octree][format]")
+{
+    openvdb::initialize();
+    const auto dir = std::filesystem::temp_directory_path() / "isodel_adaptive_format_only_checked";
+    std::filesystem::create_directories(dir);
+    auto g = testing::random_adaptive(77, 1, 12, 3);
+    REQUIRE(g->max_level() >= 1);
+    isodel::AdaptiveVolume v;
+    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(g->samples_ptr());
+    v.levels = g->masks();
+    v.domain = g->domain();
+    const std::string path = (dir / "adaptive.vdb").string();
+    isodel::save_adaptive(path, v);
+    // The same grids and a point grid (a type the check does not walk): still loads, the point
+    // grid unread.
+    openvdb::GridPtrVec grids;
+    {
+        openvdb::io::File f(path);
+        f.open(false);
+        grids = *f.getGrids();
+    }
+    auto points = openvdb::points::PointDataGrid::create();
+    points->setName("points");
+    grids.push_back(points);
+    const std::string with_points = (dir / "with_points.vdb").string();
+    openvdb::io::File(with_points).write(grids);
+    const auto w = isodel::load_adaptive(with_points);
+    CHECK(same_grid(*w.samples, *v.samples));
+    // A level grid of another type is refused with one line, not read.
+    for (auto& grid : grids)
+        if (grid->getName() == "level_1") {
+            auto p = openvdb::points::PointDataGrid::create();
+            p->setName("level_1");
+            grid = p;
+        }
+    const std::string bad_level = (dir / "bad_level.vdb").string();
+    openvdb::io::File(bad_level).write(grids);
+    CHECK_THROWS_WITH(isodel::load_adaptive(bad_level), Catch::Contains("grid level_1 has type"));
+    CHECK_FALSE(isodel::adaptive_info(bad_level));
+    // The importance grid: the grid OpenVDB lists first, if its type is walked.
+    auto mask = openvdb::MaskGrid::create();
+    mask->setName("a_mask");
+    mask->tree().setValueOn(openvdb::Coord(3, 4, 5));
+    const std::string importance = (dir / "importance.vdb").string();
+    openvdb::io::File(importance).write({points, mask});
+    const auto im = isodel::read_importance_grid(importance);
+    REQUIRE(im);
+    CHECK(im->getName() == "a_mask");
+    CHECK(im->activeVoxelCount() == 1);
+    points->setName("0_points"); // now listed first
+    openvdb::io::File(importance).write({points, mask});
+    CHECK_THROWS_WITH(isodel::read_importance_grid(importance), Catch::Contains("importance grid '0_points' has type"));
     std::filesystem::remove_all(dir);
 }

@@ -45,17 +45,7 @@ void add_decimate_command(CLI::App& app, int& exit_code)
         opt.max_level = o->max_level;
         opt.source = vol.path;
         if (!o->importance.empty()) {
-            InputOptions mi;
-            mi.path = o->importance;
-            try {
-                openvdb::io::File f(o->importance);
-                f.open();
-                auto grids = f.getGrids();
-                if (!grids || grids->empty()) throw InvalidInput(o->importance + ": no grids");
-                opt.importance = grids->front();
-            } catch (const openvdb::Exception& e) {
-                throw IoError(o->importance + ": " + e.what());
-            }
+            opt.importance = read_importance_grid(o->importance);
         }
         const DecimateResult r = decimate(*vol.grid, opt, &progress);
         save_adaptive(o->out, r.volume);
