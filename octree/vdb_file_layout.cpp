@@ -22,7 +22,8 @@ namespace {
 /// One array of openvdb::io::DelayedLoadMetadata::readValue: a uint32 byte count, then a Blosc
 /// buffer of that many bytes, or (count 0) \p count raw elements of \p element bytes. OpenVDB
 /// sizes its vector by the Blosc header's uncompressed size, so that must be the array's (or the
-/// 128 bytes OpenVDB's compressor pads a shorter array to).
+/// 128 bytes OpenVDB's compressor pads a shorter array to), and Blosc decompresses by the
+/// header's compressed size, which must lie within the buffer (blosc_fits).
 /// \return the bytes the array takes.
 std::uint64_t skip_delayed_load_array(LayoutReader& r, std::uint32_t count, std::uint64_t element, const char* what)
 {
@@ -34,14 +35,17 @@ std::uint64_t skip_delayed_load_array(LayoutReader& r, std::uint32_t count, std:
     constexpr std::uint32_t kBloscHeader = 16;
     if (bytes < kBloscHeader) r.refuse(std::string(what) + ": a compressed array shorter than its header");
     r.need(bytes, what);
-    const std::uint64_t start = r.pos();
-    r.skip(4, what); // Blosc's version, flags and type size
-    const auto uncompressed = r.read<std::uint32_t>(what);
+    unsigned char header[kBloscHeader];
+    r.read_bytes(header, kBloscHeader, what);
+    const BloscHeader h = blosc_header(header);
     constexpr std::uint64_t kBloscPadBytes = 128; // openvdb::io BLOSC_PAD_BYTES
-    if (uncompressed < count * element || uncompressed > std::max<std::uint64_t>(count * element, kBloscPadBytes))
-        r.refuse(std::string(what) + ": a compressed array of " + std::to_string(uncompressed) + " bytes for " +
+    if (h.uncompressed < count * element || h.uncompressed > std::max<std::uint64_t>(count * element, kBloscPadBytes))
+        r.refuse(std::string(what) + ": a compressed array of " + std::to_string(h.uncompressed) + " bytes for " +
                  std::to_string(count) + " elements of " + std::to_string(element));
-    r.skip(bytes - (r.pos() - start), what);
+    if (!blosc_fits(h, bytes))
+        r.refuse(std::string(what) + ": a compressed array of " + std::to_string(bytes) + " bytes whose header states " +
+                 std::to_string(h.compressed));
+    r.skip(bytes - kBloscHeader, what);
     return 4 + std::uint64_t(bytes);
 }
 

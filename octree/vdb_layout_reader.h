@@ -6,6 +6,7 @@
 #include <isodel/errors.h>
 
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -79,5 +80,29 @@ private:
     std::uint64_t size_ = 0;
     std::uint64_t pos_ = 0;
 };
+
+/// The sizes of a Blosc buffer's 16-byte header, which Blosc trusts when it decompresses.
+struct BloscHeader {
+    std::uint8_t flags = 0;
+    std::uint32_t uncompressed = 0; ///< bytes it decompresses to
+    std::uint32_t compressed = 0;   ///< bytes of the whole buffer, header included
+};
+inline BloscHeader blosc_header(const unsigned char* header)
+{
+    BloscHeader h;
+    h.flags = header[2];
+    std::memcpy(&h.uncompressed, header + 4, 4);
+    std::memcpy(&h.compressed, header + 12, 4);
+    return h;
+}
+/// Whether decompressing a buffer of \p chunk bytes with header \p h reads within the buffer:
+/// the stated whole from its header up to the chunk, and a stored (memcpy) buffer holds all its
+/// bytes.
+inline bool blosc_fits(const BloscHeader& h, std::uint64_t chunk)
+{
+    constexpr std::uint8_t kMemcpyed = 0x2; // BLOSC_MEMCPYED
+    return h.compressed >= 16 && h.compressed <= chunk &&
+           (!(h.flags & kMemcpyed) || h.compressed >= 16 + std::uint64_t(h.uncompressed));
+}
 
 } // namespace isodel::octree

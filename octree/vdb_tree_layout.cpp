@@ -225,22 +225,18 @@ private:
         check_bools(values, what);
     }
 
-    /// Blosc trusts its header: the uncompressed size must be the node's, the compressed size
-    /// must lie within the chunk, and a stored (memcpy) chunk must hold all its bytes.
+    /// Blosc trusts its header: the uncompressed size must be the node's, and the buffer must
+    /// lie within the chunk (blosc_fits).
     void blosc_chunk(std::uint64_t stated, std::uint64_t bytes, const std::string& what)
     {
         constexpr std::uint64_t kHeader = 16;
         if (stated < kHeader) r_.refuse(what + ": a Blosc chunk shorter than its header");
         std::vector<unsigned char> chunk(bool_tree() ? stated : kHeader);
         r_.read_bytes(chunk.data(), kHeader, what);
-        std::uint32_t uncompressed = 0, compressed = 0;
-        std::memcpy(&uncompressed, &chunk[4], 4);
-        std::memcpy(&compressed, &chunk[12], 4);
-        constexpr unsigned char kMemcpyed = 0x2; // BLOSC_MEMCPYED
-        if (uncompressed != bytes || compressed < kHeader || compressed > stated ||
-            ((chunk[2] & kMemcpyed) && compressed < kHeader + uncompressed))
+        const BloscHeader h = blosc_header(chunk.data());
+        if (h.uncompressed != bytes || !blosc_fits(h, stated))
             r_.refuse(what + ": a Blosc chunk of " + std::to_string(stated) + " bytes states " +
-                      std::to_string(compressed) + " compressed and " + std::to_string(uncompressed) +
+                      std::to_string(h.compressed) + " compressed and " + std::to_string(h.uncompressed) +
                       " uncompressed bytes, the node holds " + std::to_string(bytes));
         if (!bool_tree()) {
             r_.skip(stated - kHeader, what);

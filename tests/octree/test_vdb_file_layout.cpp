@@ -54,6 +54,13 @@ std::string with_u32(std::string bytes, std::size_t at, std::uint32_t value)
     return bytes;
 }
 
+std::uint32_t get_u32(const std::string& bytes, std::size_t at)
+{
+    std::uint32_t v = 0;
+    std::memcpy(&v, &bytes[at], 4);
+    return v;
+}
+
 /// The offset of the uint32 length before the first occurrence of the string \p s.
 std::size_t length_of(const std::string& bytes, const std::string& s)
 {
@@ -179,6 +186,20 @@ TEST_CASE("VDB layout: sizes the file cannot hold are refused", "[octree][vdb_fi
         const std::size_t count_at = type_at + 4 + 13 + 4; // after the type name and the byte count
         write_bytes(p, with_u32(bytes, count_at, 0x7FFFFFFFu));
         CHECK(refusal(p).find("2147483647 leaves cannot fit in the file") != std::string::npos);
+    }
+    SECTION("a delayed-load array whose Blosc header states more bytes than it holds")
+    {
+        // fuzz_load_adaptive: Blosc (LZ4) read past the array's buffer, inside MetaMap::readMeta.
+        // Enough leaves that OpenVDB compresses the array of their flags.
+        auto big = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(40.0f, openvdb::Vec3f(0), 0.5f);
+        write(dir / "big.vdb", {big});
+        const std::string big_bytes = read_text(dir / "big.vdb");
+        const std::size_t array_at = length_of(big_bytes, "__delayedload") + 4 + 13 + 4 + 4;
+        const auto stated = get_u32(big_bytes, array_at);
+        REQUIRE(stated > 16); // compressed
+        write_bytes(p, with_u32(big_bytes, array_at + 4 + 12, stated + 100));
+        CHECK(refusal(p).find("a compressed array of " + std::to_string(stated) + " bytes whose header states " +
+                              std::to_string(stated + 100)) != std::string::npos);
     }
     SECTION("a grid offset")
     {
