@@ -72,8 +72,12 @@ void skip_delayed_load(LayoutReader& r, std::uint32_t bytes, const char* what)
 /// openvdb::MetaMap::readMeta: a count, then name, type name, byte count and value per entry.
 /// A registered type of fixed size is read with its own size whatever the byte count says, so
 /// the byte count must equal it, or OpenVDB's reading would part from this walk.
-void skip_metadata(LayoutReader& r, const char* what)
+/// \return the value of a grid's "is_saved_as_half_float" entry (false without one): after
+/// GridBase::readMeta, Grid::readTopology and readBuffers read the tree at half precision by
+/// it, whatever the descriptor's type name said.
+bool skip_metadata(LayoutReader& r, const char* what, bool grid_metadata = false)
 {
+    bool saved_as_half = false;
     const auto count = r.read<std::uint32_t>(what);
     if (count > r.left() / 12) // each entry holds at least three uint32 sizes
         r.refuse(std::string(what) + ": " + std::to_string(count) + " metadata entries cannot fit in the file");
@@ -85,10 +89,14 @@ void skip_metadata(LayoutReader& r, const char* what)
             skip_delayed_load(r, bytes, what);
             continue;
         }
+        const bool half_entry = grid_metadata && name == openvdb::GridBase::META_SAVE_HALF_FLOAT;
+        if (half_entry && (type != openvdb::BoolMetadata::staticTypeName() || bytes != 1))
+            r.refuse(std::string(what) + ": metadata '" + name + "' is not a bool");
         if (type == openvdb::BoolMetadata::staticTypeName() && bytes == 1) {
             // BoolMetadata reads the byte as a bool: only 0 and 1 are bools.
             const auto b = r.read<std::uint8_t>(what);
             if (b > 1) r.refuse(std::string(what) + ": metadata '" + name + "' is a bool stored as " + std::to_string(b));
+            if (half_entry) saved_as_half = b == 1;
             continue;
         }
         if (type != openvdb::StringMetadata::staticTypeName() && openvdb::Metadata::isRegisteredType(type)) {
@@ -99,13 +107,13 @@ void skip_metadata(LayoutReader& r, const char* what)
         }
         r.skip(bytes, what); // a string's characters, or a type OpenVDB does not know
     }
+    return saved_as_half;
 }
 
 /// A grid descriptor as GridDescriptor::read reads it.
 struct Descriptor {
     std::string unique_name;
-    std::string type; ///< without the "_HalfFloat" suffix
-    bool half = false;
+    std::string type; ///< without the "_HalfFloat" suffix (the grid's metadata says how its tree is stored)
     std::string parent; ///< the instance parent's unique name; empty for a grid with its own tree
     std::int64_t grid_pos = 0, block_pos = 0, end_pos = 0;
 };
@@ -118,7 +126,6 @@ Descriptor read_descriptor(LayoutReader& r)
     const std::string half_suffix = "_HalfFloat"; // GridDescriptor.cc, not exported
     if (d.type.size() > half_suffix.size() &&
         d.type.compare(d.type.size() - half_suffix.size(), half_suffix.size(), half_suffix) == 0) {
-        d.half = true;
         d.type.resize(d.type.size() - half_suffix.size());
     }
     d.parent = r.string("a grid descriptor"); // format 216 and later: the instance parent
@@ -134,9 +141,8 @@ Descriptor read_descriptor(LayoutReader& r)
 void walk_grid(LayoutReader& r, const Descriptor& d, const VdbTreeKind& kind, std::uint64_t data_start)
 {
     VdbGridStream stream;
-    stream.half = d.half;
     stream.compression = r.read<std::uint32_t>("a grid's compression flags");
-    skip_metadata(r, "a grid's metadata");
+    stream.half = skip_metadata(r, "a grid's metadata", /*grid_metadata=*/true);
     if (r.pos() > data_start) r.refuse("grid '" + d.unique_name + "': its metadata runs past the start of its data");
     skip_vdb_transform(r, d.unique_name);
     if (d.parent.empty()) skip_vdb_tree(r, kind, stream, d.unique_name);

@@ -36,7 +36,7 @@ std::optional<VdbTreeKind> vdb_tree_kind(const std::string& grid_type);
 /// The stream state OpenVDB's node readers consult for one grid.
 struct VdbGridStream {
     std::uint32_t compression = 0; ///< the grid's io::COMPRESS_* flags
-    bool half = false;             ///< saved as half floats ("_HalfFloat" type name)
+    bool half = false;             ///< the grid's "is_saved_as_half_float" metadata
 };
 
 /// Walks a math::Transform as Transform::read does (file format 222 and later): the map's type

@@ -1,5 +1,6 @@
 // OpenVDB reader: grid choice, grid class -> inside side, double -> float, half-float files,
 // sparse grids (lattice = active box), and the refusals.
+#include "support/json.h"
 #include "support/test_files.h"
 
 #include <isodel/errors.h>
@@ -165,4 +166,54 @@ TEST_CASE("VDB: bundled test files read", "[vdb]")
     CHECK(v.value_min < 0);
     CHECK(v.value_max > 0);
     CHECK(v.grid->activeVoxelCount() > 0);
+}
+
+namespace read_vdb_corpus_test {
+/// Every value and active state of \p expected (OpenVDB's own read) in \p got, at float
+/// precision, the same active voxel count, background and transform.
+template <class GridT>
+void check_same_grid(const GridT& expected, const openvdb::FloatGrid& got)
+{
+    CHECK(got.activeVoxelCount() == expected.activeVoxelCount());
+    CHECK(got.background() == float(expected.background()));
+    CHECK(got.transform() == expected.transform());
+    auto acc = got.getConstAccessor();
+    std::size_t differ = 0;
+    for (auto it = expected.cbeginValueOn(); it; ++it)
+        differ += acc.getValue(it.getCoord()) != float(*it) || !acc.isValueOn(it.getCoord());
+    for (auto leaf = expected.tree().cbeginLeaf(); leaf; ++leaf)
+        for (auto v = leaf->cbeginValueOff(); v; ++v) differ += acc.getValue(v.getCoord()) != float(*v);
+    CHECK(differ == 0);
+}
+} // namespace read_vdb_corpus_test
+
+TEST_CASE("VDB: every corpus file reads as the grid OpenVDB reads without isodel's checks", "[vdb][corpus]")
+{
+    // The file check (octree/vdb_file_layout.h) only refuses: an accepted file reads exactly as
+    // OpenVDB alone reads it, so the meshes of the corpus do not depend on it.
+    if (!shared_data_present()) {
+        WARN("skipped: the corpus (../shared/data) is absent");
+        return;
+    }
+    openvdb::initialize();
+    int files = 0;
+    for (const auto& e : isodel::testing::read_json_file(std::string(ISODEL_SHARED_DATA) + "/manifest.json")) {
+        if (isodel::testing::json_string(e, "format") != "vdb" || e.value("expect_error", false)) continue;
+        const std::string path = std::string(ISODEL_SHARED_DATA) + "/" + isodel::testing::json_string(e, "file");
+        CAPTURE(path);
+        ReadOptions opt;
+        opt.grid_name = e.value("grid_name", std::string());
+        const Volume v = read_volume(path, opt);
+        openvdb::io::File f(path);
+        f.open(false);
+        const auto base = f.readGrid(v.grid->getName());
+        if (const auto fg = openvdb::gridPtrCast<openvdb::FloatGrid>(base))
+            read_vdb_corpus_test::check_same_grid(*fg, *v.grid);
+        else if (const auto dg = openvdb::gridPtrCast<openvdb::DoubleGrid>(base))
+            read_vdb_corpus_test::check_same_grid(*dg, *v.grid);
+        else
+            FAIL("grid '" << v.grid->getName() << "' is neither float nor double");
+        ++files;
+    }
+    CHECK(files > 10);
 }

@@ -220,7 +220,7 @@ TEST_CASE("VDB tree walk: chunk lengths, counts and origins the nodes do not hav
 
     SECTION("an uncompressed Zip chunk longer than the leaf (read before OpenVDB compares)")
     {
-        write_indexed(dir / "ok.vdb", {g}, openvdb::io::COMPRESS_ZIP);
+        write_indexed(dir / "ok.vdb", {g}, openvdb::io::COMPRESS_BLOSC);
         const std::string bytes = read_text(dir / "ok.vdb");
         write_bytes(p, with<std::int64_t>(bytes, block_pos(bytes, type) + 65, -4096));
         CHECK(walk_refusal(p) == p + ": not a readable OpenVDB file: grid 'leaf': a leaf's values: an uncompressed chunk "
@@ -244,6 +244,25 @@ TEST_CASE("VDB tree walk: chunk lengths, counts and origins the nodes do not hav
         CHECK(walk_refusal(p).find("compressed and 4096 uncompressed bytes, the node holds 2048") != std::string::npos);
         write_bytes(p, with<std::uint32_t>(bytes, chunk + 8 + 12, 1u << 30));
         CHECK(walk_refusal(p).find("states 1073741824 compressed") != std::string::npos);
+    }
+    SECTION("the precision is the grid metadata's, as OpenVDB reads it")
+    {
+        // fuzz_load_adaptive: Grid::readTopology reads the tree at the precision of the grid's
+        // "is_saved_as_half_float" metadata, not of the descriptor's type name.
+        g->setSaveFloatAsHalf(true);
+        write_indexed(dir / "ok.vdb", {g}, openvdb::io::COMPRESS_BLOSC);
+        const std::string bytes = read_text(dir / "ok.vdb");
+        REQUIRE(walk_refusal(dir / "ok.vdb") == "(accepted)");
+        const std::string name = openvdb::GridBase::META_SAVE_HALF_FLOAT;
+        const std::size_t value_at = bytes.find(name) + name.size() + 4 + 4 + 4; // type "bool", byte count
+        REQUIRE(get<std::uint8_t>(bytes, value_at) == 1);
+        write_bytes(p, with<std::uint8_t>(bytes, value_at, 0)); // full floats: 4 bytes a value
+        const std::string r = walk_refusal(p);
+        CAPTURE(r);
+        CHECK(r.find("grid 'leaf': an internal node's values: a Blosc chunk") != std::string::npos);
+        CHECK(r.find("65536 uncompressed bytes, the node holds 131072") != std::string::npos);
+        write_bytes(p, with<char>(bytes, value_at - 4 - 4, 'B')); // type "Bool": not a bool
+        CHECK(walk_refusal(p).find("metadata 'is_saved_as_half_float' is not a bool") != std::string::npos);
     }
     SECTION("a root tile count the file cannot hold")
     {
