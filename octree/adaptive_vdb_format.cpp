@@ -139,6 +139,8 @@ AdaptiveVolume load_adaptive(const std::string& path)
     }
     auto s = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
     if (!s || !is_adaptive_sample_grid(*s)) throw InvalidInput(path + ": adaptive sample grid is not a float grid");
+    if (s->tree().activeVoxelCount() == 0)
+        throw InvalidInput(path + ": adaptive sample grid '" + s->getName() + "' is empty (no active voxels)");
     AdaptiveVolume v;
     v.samples = s;
     v.k = meta_or<int, openvdb::Int32Metadata>(*s, "isodel_k", 1);

@@ -91,10 +91,21 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
             }
             if (!found) invalid(path, "no grid named '" + name + "' (" + grid_list(metas) + ")");
         } else {
-            for (const auto& g : metas)
-                if (is_scalar(*g)) { name = g->getName(); break; }
-            if (name.empty() && !std::any_of(metas.begin(), metas.end(), [](auto& g) { return is_scalar(*g); }))
+            // The first scalar grid that File::readGrid(name) returns: the first of its name
+            // (OpenVDB lists grids by name, those of one name in file order).
+            bool chosen = false;
+            for (std::size_t i = 0; i < metas.size() && !chosen; ++i) {
+                const bool first_of_name = i == 0 || metas[i]->getName() != metas[i - 1]->getName();
+                if (first_of_name && is_scalar(*metas[i])) {
+                    name = metas[i]->getName();
+                    chosen = true;
+                }
+            }
+            if (!chosen && !std::any_of(metas.begin(), metas.end(), [](auto& g) { return is_scalar(*g); }))
                 invalid(path, "no float or double scalar grid (" + grid_list(metas) + ")");
+            if (!chosen)
+                invalid(path, "every float or double grid has the name of a grid of another type before it, "
+                              "which OpenVDB would read in its place (" + grid_list(metas) + ")");
         }
         // readGrid(name) returns the first grid of that name, which is the one chosen above.
         base = file.readGrid(name);

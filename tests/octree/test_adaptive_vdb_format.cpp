@@ -128,6 +128,18 @@ TEST_CASE("load_adaptive and read_importance_grid read only grids the file check
     openvdb::io::File(bad_level).write(grids);
     CHECK_THROWS_WITH(isodel::load_adaptive(bad_level), Catch::Contains("grid level_1 has type"));
     CHECK_FALSE(isodel::adaptive_info(bad_level));
+    // fuzz_load_adaptive: an adaptive file whose sample grid has no active voxel was loaded, and
+    // resampling it failed without the file's name.
+    auto empty = openvdb::FloatGrid::create(0.0f);
+    empty->setName("samples");
+    empty->insertMeta("isodel_adaptive", openvdb::Int32Metadata(1));
+    empty->insertMeta("isodel_levels", openvdb::Int32Metadata(1));
+    empty->insertMeta("isodel_domain_min", openvdb::Vec3IMetadata(openvdb::Vec3i(0)));
+    empty->insertMeta("isodel_domain_max", openvdb::Vec3IMetadata(openvdb::Vec3i(4)));
+    const std::string empty_path = (dir / "empty.vdb").string();
+    openvdb::io::File(empty_path).write({empty});
+    CHECK_THROWS_WITH(isodel::load_adaptive(empty_path),
+                      Catch::StartsWith(empty_path + ": adaptive sample grid") && Catch::Contains("is empty"));
     // The importance grid: the grid OpenVDB lists first, if its type is walked.
     auto mask = openvdb::MaskGrid::create();
     mask->setName("a_mask");

@@ -185,6 +185,16 @@ TEST_CASE("VDB tree walk: instances and grid types it does not walk", "[octree][
     write_stream(dir / "points.vdb", {a, points}, openvdb::io::COMPRESS_BLOSC);
     CHECK(walk_refusal(dir / "points.vdb").find("grid 'points' has type " + points->type() + ", whose data isodel cannot check") !=
           std::string::npos);
+
+    // A float grid named as a point grid before it: File::readGrid(name) would return the point
+    // grid (unwalked), so the reader does not choose it.
+    auto x = a->deepCopy();
+    x->setName("x");
+    points->setName("x");
+    write_indexed(dir / "shadowed.vdb", {points, x}, openvdb::io::COMPRESS_BLOSC);
+    CHECK_THROWS_WITH(read_volume(dir / "shadowed.vdb"), Catch::Contains("which OpenVDB would read in its place"));
+    opt.grid_name = "x";
+    CHECK_THROWS_WITH(read_volume(dir / "shadowed.vdb", opt), Catch::Contains("is not a scalar grid"));
 }
 
 TEST_CASE("VDB tree walk: every cut of a stream-written file is refused", "[octree][vdb_file_layout]")
