@@ -270,7 +270,7 @@ private:
 std::optional<VdbTreeKind> vdb_tree_kind(const std::string& grid_type)
 {
     using Leaf = VdbTreeKind::Leaf;
-    const std::map<std::string, VdbTreeKind> kinds{
+    static const std::map<std::string, VdbTreeKind> kinds{
         {openvdb::FloatGrid::gridType(), {Leaf::Values, sizeof(float), 2}},
         {openvdb::DoubleGrid::gridType(), {Leaf::Values, sizeof(double), 2}},
         {openvdb::Int32Grid::gridType(), {Leaf::Values, sizeof(std::int32_t), 0}},
@@ -291,7 +291,7 @@ void skip_vdb_transform(LayoutReader& r, const std::string& grid)
     namespace m = openvdb::math;
     const std::string what = "grid '" + grid + "': its transform";
     // Fixed-size maps: Mat4d (128 bytes) or Vec3d fields (24 bytes each), as each Map::read reads.
-    const std::map<std::string, std::uint64_t> fixed{
+    static const std::map<std::string, std::uint64_t> fixed{
         {m::AffineMap::mapType(), 128},          {m::UnitaryMap::mapType(), 128},
         {m::ScaleMap::mapType(), 5 * 24},        {m::UniformScaleMap::mapType(), 5 * 24},
         {m::TranslationMap::mapType(), 24},      {m::ScaleTranslateMap::mapType(), 6 * 24},
