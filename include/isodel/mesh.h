@@ -21,6 +21,7 @@
 ///    (v* = v otherwise); MeshStats::effective_isovalue reports v*.
 ///  - Beyond the active bounding box grown by one voxel F is on the outside side, so Sigma is a
 ///    set of closed surfaces.
+#include <isodel/block_transport.h>
 #include <isodel/interrupt.h>
 #include <isodel/stats.h>
 #include <isodel/surface_mesh.h>
@@ -89,13 +90,16 @@ struct MeshOptions {
     /// sqrt(3) times it); 0 = 8 voxels.
     double tet_size = 0;
     /// Partitioned meshing (paper Fig. 8), dense grids: > 0 cuts the domain into blocks of this
-    /// many voxels per axis, meshes each block with a protective collar concurrently, then
-    /// merges their points in one Delaunay triangulation whose closed-ball and eps checks fix
-    /// the seams (src/surface/partitioned_meshing.h). 0 = one block. Same guarantees either way.
-    /// At least kMinBlockVoxels: each block is meshed with a collar of 4 voxels or more on each
-    /// side, so smaller blocks repeat the same work many times over (a block of 1 voxel meshes
-    /// 9^3 voxels for each one it owns, a block of 4 at most 3^3). At most 10^6 blocks.
+    /// many voxels per axis and meshes each block with a protective collar concurrently; the
+    /// blocks exchange the points they insert and each hands out the triangles it owns
+    /// (src/surface/partitioned_meshing.h, docs/partitioned.md). 0 = one block. Same guarantees
+    /// either way. At least kMinBlockVoxels: each block is meshed with a collar of 6 voxels or
+    /// more on each side, so smaller blocks repeat the same work many times over. At most 10^6
+    /// blocks.
     int block_voxels = 0;
+    /// With block_voxels: the processes the blocks are spread over (block_transport.h), or null
+    /// for this process's threads. Not with tets.
+    BlockTransport* transport = nullptr;
     /// Check the surface with isodel's verifier (include/isodel/verify.h: topology against an
     /// independent computation of Sigma's, the eps bound, a closed oriented 2-manifold without
     /// self-intersections, Delaunay conformity) before returning it; when it fails,

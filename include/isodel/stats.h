@@ -21,11 +21,13 @@ struct ComponentTopology {
 
 /// What partitioned meshing did (MeshOptions::block_voxels > 0).
 struct PartitionStats {
-    int blocks = 0;                       ///< blocks holding crossings of Sigma
-    int collar_voxels = 0;                ///< collar width (the widest axis)
-    int blocks_failed = 0;                ///< blocks whose run stopped at a bound (merge redoes them)
-    std::size_t block_points = 0;         ///< N points the blocks contributed to the merge
-    std::size_t seam_points = 0;          ///< N points the merge inserted (seams)
+    int blocks = 0;                       ///< blocks of the partition
+    int collar_voxels = 0;                ///< collar width (the widest axis), after any growth
+    int collar_growths = 0;               ///< times the collar grew (an owned facet's ball left its block)
+    int exchange_rounds = 0;              ///< rounds of point exchange until no block inserted a point
+    std::size_t exchanged_points = 0;     ///< points a block received that were new to it (summed)
+    std::size_t block_points = 0;         ///< N points the blocks inserted
+    std::size_t seam_points = 0;          ///< with tetrahedra: N points the merged triangulation added
 };
 
 /// Quality and size of the tetrahedral mesh (all figures over the returned tetrahedra).

@@ -264,7 +264,7 @@ std::vector<Vertex_handle> vertices_to_scan(const Delaunay& dt, bool first, std:
 /// represents it). On the \p first scan only the edges at v, an edge between two E/N vertices
 /// taken at its smaller id, so that each edge is found from exactly one vertex.
 void star_edges(const Delaunay& dt, bool first, Vertex_handle v, const std::vector<Cell_handle>& cells,
-                std::vector<EdgeJob>& out)
+                std::vector<EdgeJob>& out, const std::function<bool(const Point&)>& region)
 {
     out.clear();
     for (const Cell_handle& c : cells)
@@ -275,8 +275,11 @@ void star_edges(const Delaunay& dt, bool first, Vertex_handle v, const std::vect
                 if (dt.is_infinite(va) || dt.is_infinite(vb)) continue;
                 if (!va->info().on_surface() && !vb->info().on_surface()) continue;
                 const auto ia = va->info().id, ib = vb->info().id;
-                if (first && va->info().on_surface() && vb->info().on_surface() && v->info().id != std::min(ia, ib))
-                    continue; // found from its other end
+                // Found from its other end, unless that end is outside the region (not scanned).
+                const Vertex_handle other = va == v ? vb : va;
+                if (first && va->info().on_surface() && vb->info().on_surface() && v->info().id != std::min(ia, ib) &&
+                    (!region || region(other->point())))
+                    continue;
                 // order: when it was found, so the first found of each edge sorts first
                 // (a stable sort by edge, without stable_sort's buffer per vertex).
                 out.push_back({Delaunay::Edge(c, i, j), std::min(ia, ib), std::max(ia, ib), std::uint32_t(out.size())});
@@ -290,7 +293,8 @@ void star_edges(const Delaunay& dt, bool first, Vertex_handle v, const std::vect
 /// checked right away, while the star's cells are at hand, with no list of all the jobs
 /// (millions on a large volume) to sort. (Nothing is flagged before the first scan.)
 std::vector<Found> check_every_star(const Delaunay& dt, const octree::SampleField& field, int max_cells,
-                                    const std::vector<Vertex_handle>& from)
+                                    const std::vector<Vertex_handle>& from,
+                                    const std::function<bool(const Point&)>& region)
 {
     std::vector<Found> found;
     std::vector<std::vector<Found>> per_vertex;
@@ -301,7 +305,7 @@ std::vector<Found> check_every_star(const Delaunay& dt, const octree::SampleFiel
         per_vertex.assign(end - begin, {});
         for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
             auto& jobs = lists.local();
-            star_edges(dt, /*first=*/true, from[k], cells, jobs);
+            star_edges(dt, /*first=*/true, from[k], cells, jobs, region);
             const auto& reader = readers.local();
             for (const EdgeJob& job : jobs)
                 if (auto c = check_facet(dt, job, field, reader, max_cells)) per_vertex[k - begin].push_back({job, *c});
@@ -325,7 +329,7 @@ std::vector<Found> check_changed_facets(const Delaunay& dt, const octree::Sample
         per_vertex.assign(end - begin, {});
         for_each_star(from, begin, end, [&](std::size_t k, const std::vector<Cell_handle>& cells) {
             per_vertex[k - begin].reserve(6 * cells.size());
-            star_edges(dt, /*first=*/false, from[k], cells, per_vertex[k - begin]);
+            star_edges(dt, /*first=*/false, from[k], cells, per_vertex[k - begin], {});
         });
         for (auto& list : per_vertex) {
             for (EdgeJob& job : list) {
@@ -368,10 +372,21 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
     // Voronoi facet changes only when a cell around its edge does. Plus the facets violated last
     // time (their point may have been skipped as too close to another one of the batch).
     const bool first = first_;
-    const std::vector<Vertex_handle> from = vertices_to_scan(dt, first, touched_);
+    std::vector<Vertex_handle> from = vertices_to_scan(dt, first, touched_);
+    if (region_) {
+        // The first scan starts from the region's vertices (star_edges takes the edges leaving
+        // it at their inner end); later scans start from every touched vertex, since a point
+        // inserted just outside changes the facets of edges inside.
+        if (first)
+            from.erase(std::remove_if(from.begin(), from.end(), [&](const Vertex_handle& v) { return !region_(v->point()); }),
+                   from.end());
+        flagged_.erase(std::remove_if(flagged_.begin(), flagged_.end(),
+                                      [&](const auto& e) { return !region_(e.first->point()) && !region_(e.second->point()); }),
+                       flagged_.end());
+    }
     first_ = false;
     touched_.clear();
-    std::vector<Found> found = first ? check_every_star(dt, field, max_cells, from)
+    std::vector<Found> found = first ? check_every_star(dt, field, max_cells, from, region_)
                                      : check_changed_facets(dt, field, max_cells, from, flagged_);
     flagged_.clear();
     // In id order of the edges (the first scan found them by vertex).
@@ -379,6 +394,7 @@ std::vector<Candidate> FacetLoopScanner::scan(const Delaunay& dt, const octree::
               [](const Found& x, const Found& y) { return std::tie(x.job.a, x.job.b) < std::tie(y.job.a, y.job.b); });
     std::vector<Candidate> out;
     for (const Found& f : found) {
+        if (keep_ && !keep_(f.candidate.p)) continue;
         out.push_back(f.candidate);
         const auto& e = f.job.edge;
         flagged_.push_back({e.first->vertex(e.second), e.first->vertex(e.third)});

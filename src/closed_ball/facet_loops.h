@@ -25,6 +25,7 @@
 #include "closed_ball/closed_ball.h"
 #include "octree/sample_field.h"
 
+#include <functional>
 #include <vector>
 
 namespace isodel::mesher {
@@ -41,11 +42,18 @@ public:
 
     /// Every vertex inserted into \p dt after the first scan must be reported here.
     void touched(Vertex_handle v) { touched_.push_back(v); }
+    /// Scans only edges with an end in \p region (all when empty): partitioned meshing's blocks.
+    void set_region(std::function<bool(const Point&)> region) { region_ = std::move(region); }
+    /// Returns, and scans again, only loops whose candidate \p keep accepts: another block's
+    /// loops wait until a vertex is touched near them.
+    void set_keep(std::function<bool(const Point&)> keep) { keep_ = std::move(keep); }
 
 private:
     bool first_ = true;
     std::vector<Vertex_handle> touched_;
     std::vector<std::pair<Vertex_handle, Vertex_handle>> flagged_;
+    std::function<bool(const Point&)> region_;
+    std::function<bool(const Point&)> keep_;
 };
 
 } // namespace isodel::mesher

@@ -202,6 +202,14 @@ struct FacetCache::CellRun {
     std::vector<std::size_t> counted;
 };
 
+bool FacetCache::in_region(const Facet& f) const
+{
+    if (!region_) return true;
+    for (const auto& v : facet_vertices(f))
+        if (region_(v->point())) return true;
+    return false;
+}
+
 void FacetCache::update(const Delaunay& dt, const octree::SampleField& field, int max_cells)
 {
     const bool initial = !scanned_;
@@ -281,7 +289,7 @@ void FacetCache::record_cell_run(UpdateRun& run, CellRun& batch)
                 for (int i = 0; i < 4; ++i) {
                     if (c->neighbor(i) < c) continue; // found from its neighbour
                     const Facet f(c, i);
-                    if (dt.is_infinite(f) || !has_surface_vertex(f)) continue;
+                    if (dt.is_infinite(f) || !has_surface_vertex(f) || !in_region(f)) continue;
                     ++counted[t];
                     FacetRecord rec = compute_facet_record(dt, f, reader, max_cells);
                     if (rec.crossings == 0 && !rec.overflow) continue;
@@ -322,7 +330,8 @@ void FacetCache::scan_around_inserted(UpdateRun& run)
                     // (either: compute_facet_record walks the edge canonically).
                     if (j != c->index(inserted_[i]) && c->neighbor(j) < c) continue;
                     const Facet f(c, j);
-                    if (!dt.is_infinite(f) && has_surface_vertex(f)) per_vertex[i - first].push_back({facet_key(f), 0, f});
+                    if (!dt.is_infinite(f) && has_surface_vertex(f) && in_region(f))
+                        per_vertex[i - first].push_back({facet_key(f), 0, f});
                 }
         });
         found.clear();

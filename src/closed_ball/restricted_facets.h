@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <functional>
 #include <vector>
 
 namespace isodel::mesher {
@@ -101,6 +102,9 @@ public:
         far_distance_ = d;
     }
     double far_distance() const { return far_distance_; }
+    /// Records only facets with a vertex in \p region (all when empty): a block of partitioned
+    /// meshing checks the Voronoi elements near its own region, not those of its collar.
+    void set_region(std::function<bool(const Point&)> region) { region_ = std::move(region); }
     /// The active facet \p key (as in active()); throws std::logic_error if it is none.
     Entry entry(const FacetKey& key) const;
     /// The number of active facets.
@@ -154,6 +158,7 @@ private:
     std::size_t computed_ = 0;
     Flagged flagged_;
     double far_distance_ = INFINITY;
+    std::function<bool(const Point&)> region_;
     void update_flagged(const std::vector<Entry>& added);
     // update()'s stages (restricted_facets.cpp), in order: the facets to compute (every facet
     // on the first call, by runs of cells; later the facets around the inserted points), their
@@ -164,6 +169,7 @@ private:
     void scan_every_facet(UpdateRun& run);
     void record_cell_run(UpdateRun& run, CellRun& batch);
     void scan_around_inserted(UpdateRun& run);
+    bool in_region(const Facet& f) const;
     void record_todo(UpdateRun& run);
     void apply_changes(std::vector<Entry>& added);
     /// The entry of a stored record (its flags copied, and whether every vertex is on Sigma).

@@ -20,7 +20,8 @@ Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 
 InitialPoints initial_points(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
                              const octree::AdaptiveGrid::Reader* leaves, bool use_snap, double snap_radius,
-                             const std::vector<SeedPoint>& seeds, MeshStats& st, Interrupter* interrupter)
+                             const std::vector<SeedPoint>& seeds, MeshStats& st, Interrupter* interrupter,
+                             const openvdb::CoordBBox* cells_within)
 {
     InitialPoints out;
     const octree::FaceSlabs& slabs = field.face_slabs();
@@ -28,6 +29,17 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
     // Progress in leaves: the work before Del(E u G) follows the active leaves, not the box.
     octree::EdgeCrossings e = octree::edge_crossings(
         field, [&](std::size_t done, std::size_t total) { scope.check(done, total, "leaves"); });
+    if (cells_within) {
+        const openvdb::CoordBBox& box = *cells_within;
+        e.points.erase(std::remove_if(e.points.begin(), e.points.end(),
+                                      [&](const octree::EdgePoint& p) {
+                                          return !box.isInside(p.lower) || !box.isInside(p.lower.offsetBy(p.axis == 0, p.axis == 1, p.axis == 2));
+                                      }),
+                       e.points.end());
+        e.crossed_cells.erase(std::remove_if(e.crossed_cells.begin(), e.crossed_cells.end(),
+                                             [&](const openvdb::Coord& c) { return !box.isInside(c) || !box.isInside(c.offsetBy(1)); }),
+                              e.crossed_cells.end());
+    }
     if (adaptive) {
         // E on leaf edges only; G from the leaves (adaptive_points.h).
         e.points.erase(std::remove_if(e.points.begin(), e.points.end(),

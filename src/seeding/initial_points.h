@@ -35,8 +35,12 @@ struct InitialPoints {
 /// The points of Del(E u G) for \p field (its face slabs already set). \p leaves: the reader
 /// of \p adaptive (both null on a dense grid); \p use_snap: MeshOptions::snap. Fills st's e_points, g_points, bound_e, bound_n,
 /// snapped and counts the seeds in n_topology / n_geometry.
+/// \p cells_within (a block of partitioned meshing): only the crossings on edges inside it and
+/// the crossed cells inside it count, so \p field may be clipped to it (SampleField's clipping
+/// constructor), and the false crossings where its Sigma closes along the clip leave no points.
 InitialPoints initial_points(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
                              const octree::AdaptiveGrid::Reader* leaves, bool use_snap, double snap_radius,
-                             const std::vector<SeedPoint>& seeds, MeshStats& st, Interrupter* interrupter);
+                             const std::vector<SeedPoint>& seeds, MeshStats& st, Interrupter* interrupter,
+                             const openvdb::CoordBBox* cells_within = nullptr);
 
 } // namespace isodel::mesher

@@ -11,9 +11,8 @@
 #include "surface/mesh_field.h"
 #include "surface/thread_limit.h"
 
-#include "delaunay/initial_delaunay.h"
-#include "seeding/initial_points.h"
 #include "surface/refiner.h"
+#include "surface/surface_pipeline.h"
 #include "surface/surface_extraction.h"
 #include "volume/volume_mesh.h"
 
@@ -53,19 +52,6 @@ Inside inside_side(const openvdb::FloatGrid& grid, const MeshOptions& options)
 
 namespace {
 
-/// Block mode (FieldRun::inserted): the N points the loops inserted, in insertion order.
-void collect_block_points(const Delaunay& dt, std::uint32_t first_inserted, std::vector<SeedPoint>& out)
-{
-    std::vector<std::pair<std::uint32_t, SeedPoint>> n;
-    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-        const PointKind k = v->info().kind;
-        if (v->info().id >= first_inserted && (k == PointKind::Topology || k == PointKind::Geometry))
-            n.push_back({v->info().id, SeedPoint{{v->point().x(), v->point().y(), v->point().z()}, k}});
-    }
-    std::sort(n.begin(), n.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& [id, p] : n) out.push_back(p);
-}
-
 /// Every vertex of \p dt, world coordinates, in id order (FieldRun::final_points).
 std::vector<std::array<double, 3>> all_points(const Delaunay& dt)
 {
@@ -88,65 +74,22 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
     MeshStats& st = result.stats;
     check_mesh_options(options);
     const ThreadLimit threads(options.threads);
-
-    const octree::AdaptiveGrid* adaptive = run.adaptive;
     st.effective_isovalue = run.field->effective_isovalue();
-    std::unique_ptr<octree::AdaptiveGrid::Reader> leaves;
-    if (adaptive) leaves = std::make_unique<octree::AdaptiveGrid::Reader>(*adaptive);
-    const double eps_user = options.eps > 0 ? options.eps : options.eps_voxels * run.field->min_voxel_edge();
-    st.eps_world = eps_user;
-    // The surface meshed is Sigma' (octree/face_slabs.h): slabs around the grid planes blunt
-    // the knife-edge creases, and M within eps - slab_shift of Sigma' keeps Sigma within eps of M.
-    octree::SampleField field = *run.field;
-    field.set_face_slabs(field.face_slabs_for_eps_world(eps_user));
-    const double slab_shift = field.face_slab_shift();
-    const double eps = eps_user - slab_shift;
-    const double snap_radius = options.snap ? 0.5 * eps : 0.0; // snap_edge_points.h: eps / 2
 
-    // Steps 1-2: E and G (initial_points.h).
-    auto t0 = Clock::now();
-    InitialPoints ip = initial_points(field, adaptive, leaves.get(), options.snap, snap_radius, run.seeds, st, interrupter);
-    st.seconds["points"] = seconds_since(t0);
-    if (st.e_points == 0 && run.inserted) return result; // a block Sigma misses
-    if (st.e_points == 0) throw InvalidInput("the level set is empty: no grid edge crosses the isovalue");
-
-    // Step 3: Del(E u G), spatially sorted insertion.
-    t0 = Clock::now();
-    Delaunay dt;
-    {
-        InterruptScope scope(interrupter, "delaunay");
-        build_initial_delaunay(dt, ip.points, &scope);
-        scope.check(100);
-    }
-    const auto first_inserted = std::uint32_t(ip.points.size());
-    ip.points.clear();
-    ip.points.shrink_to_fit();
-    st.seconds["delaunay"] = seconds_since(t0);
+    // Steps 1-3: E, G, Del(E u G) (surface_pipeline.h).
+    SurfacePipeline pipeline(run, options, CandidateFilter(), CandidateFilter(), st, interrupter);
+    if (pipeline.empty()) throw InvalidInput("the level set is empty: no grid edge crosses the isovalue");
+    Delaunay& dt = pipeline.dt();
+    const octree::SampleField& field = pipeline.field();
 
     // Steps 4-5: the closed ball property, then eps refinement (refiner.h).
-    RefinerInput in;
-    in.field = &field;
-    in.adaptive = adaptive;
-    in.leaves = leaves.get();
-    in.g_mask = &ip.g_mask;
-    in.layer_radius = {{ip.layer.radius[0], ip.layer.radius[1], ip.layer.radius[2]}};
-    in.eps = eps;
-    // A snapped grid point is within snap_radius of Sigma, and Sigma' within slab_shift of it.
-    in.snap_radius = snap_radius + slab_shift;
-    in.slab_h_world = field.face_slabs().h * field.min_voxel_edge();
-    in.keep = run.keep;
-    Refiner refiner(dt, in, std::move(ip.crossed_cells), options, st, first_inserted, interrupter);
-    t0 = Clock::now();
+    Refiner& refiner = pipeline.refiner();
+    auto t0 = Clock::now();
     refiner.measure_voxel_bound();
     st.seconds["voxel_bound"] = seconds_since(t0);
     const std::size_t n_before_loops = st.n_topology + st.n_geometry;
-    refiner.run(run.inserted != nullptr);
+    refiner.run();
     if (!run.seeds.empty()) st.partition.seam_points = st.n_topology + st.n_geometry - n_before_loops;
-    if (run.inserted) {
-        collect_block_points(dt, first_inserted, *run.inserted);
-        st.seconds["total"] = seconds_since(t_start);
-        return result;
-    }
 
     // Step 6: M, the restricted Delaunay surface.
     const auto t_extract = Clock::now();
@@ -165,11 +108,11 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         vp.max_cells_walk = refiner.max_cells_walk();
         vp.next_id = &next_id;
         vp.interrupter = interrupter;
-        vp.adaptive = leaves.get();
+        vp.adaptive = pipeline.leaves();
         vp.improve = options.improve_tets;
         GradedSpacing spacing{options.tet_grading, graded_max_level(options.tet_size, field.min_voxel_edge())};
         if (options.tet_spacing == TetSpacing::Graded) vp.spacing = &spacing;
-        result.tets = build_volume_mesh(dt, refiner.cache(), field, ip.g_mask.get(), result.surface, vp, st.tets);
+        result.tets = build_volume_mesh(dt, refiner.cache(), field, pipeline.g_mask().get(), result.surface, vp, st.tets);
         st.seconds["tets"] = seconds_since(t0);
     }
     st.seconds["total"] = seconds_since(t_start);

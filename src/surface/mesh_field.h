@@ -14,7 +14,8 @@
 
 namespace isodel::mesher {
 
-/// A point of N known before the run: partitioned meshing's blocks hand theirs to the merge.
+/// A point known before the run: partitioned meshing hands the blocks' points to the merge
+/// (with tetrahedra) and between blocks.
 struct SeedPoint {
     std::array<double, 3> p; ///< world coordinates
     PointKind kind;          ///< Topology or Geometry
@@ -27,12 +28,10 @@ struct FieldRun {
     const octree::AdaptiveGrid* adaptive = nullptr;
     /// Inserted with E and G into the first triangulation, then checked like every point.
     std::vector<SeedPoint> seeds;
-    /// Block mode: stop once the surface phase is done and append here the N points the closed
-    /// ball and eps loops inserted, in insertion order; no surface, no tets. A field without
-    /// crossings returns at once.
-    std::vector<SeedPoint>* inserted = nullptr;
-    /// Which violations this run fixes (by their candidate point); all when empty.
-    CandidateFilter keep;
+    /// A block of partitioned meshing: E, G and the tube and shoulder seeds come from the cells
+    /// inside this box of samples only (scanned through field clipped to it); field is read
+    /// unclipped everywhere else.
+    const openvdb::CoordBBox* point_box = nullptr;
     /// When set: every vertex of Del(E u G u N) once M is final (before the tetrahedra's G'),
     /// world coordinates, in insertion (id) order (final_points.h).
     std::vector<std::array<double, 3>>* final_points = nullptr;

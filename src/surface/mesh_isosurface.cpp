@@ -181,6 +181,10 @@ void check_mesh_options(const MeshOptions& o)
         refuse("adaptive_max_level must be in [0, 15] (got " + std::to_string(o.adaptive_max_level) + ")");
     if (o.adaptive && o.block_voxels > 0)
         refuse("adaptive meshing cannot be combined with partitioned meshing (block_voxels) yet");
+    if (o.transport && o.block_voxels == 0) refuse("a transport (several processes) needs block_voxels > 0");
+    if (o.transport && o.tets != TetRegion::None)
+        refuse("tetrahedra cannot be meshed by several processes yet (a transport with tets)");
+    if (o.transport && o.certify) refuse("certify cannot be combined with several processes yet (a transport)");
 }
 
 MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)

@@ -40,7 +40,9 @@ std::string to_json(const MeshStats& s)
         const PartitionStats& p = s.partition;
         o["partition"] = {{"blocks", p.blocks},
                           {"collar_voxels", p.collar_voxels},
-                          {"blocks_failed", p.blocks_failed},
+                          {"collar_growths", p.collar_growths},
+                          {"exchange_rounds", p.exchange_rounds},
+                          {"exchanged_points", p.exchanged_points},
                           {"block_points", p.block_points},
                           {"seam_points", p.seam_points}};
     }

@@ -2,6 +2,8 @@
 #include "surface/thread_limit.h"
 
 #include "octree/protective_layer.h"
+#include "surface/block_ranks.h"
+#include "surface/surface_extraction.h"
 
 #include <isodel/errors.h>
 
@@ -15,6 +17,7 @@
 #include <cstdio>
 #include <string>
 #include <cstdlib>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -73,7 +76,7 @@ private:
 std::array<int, 3> collar_voxels(const octree::SampleField& field)
 {
     const std::array<int, 3> r = octree::layer_radius(field);
-    return {2 * r[0] + 2, 2 * r[1] + 2, 2 * r[2] + 2};
+    return {2 * r[0] + 4, 2 * r[1] + 4, 2 * r[2] + 4};
 }
 
 std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int block_voxels,
@@ -111,88 +114,257 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
     return out;
 }
 
-std::vector<SeedPoint> mesh_block(const octree::SampleField& field, const BlockSpec& block, const MeshOptions& options,
-                                  Interrupter* interrupter)
+namespace {
+
+using Blocks = std::vector<std::unique_ptr<BlockMesher>>;
+
+/// Runs \p work(i) for this process's blocks in parallel, one task per block, polling
+/// cancellation; then agrees with the other processes on whether any failed (BlockRanks::agree).
+template <class Work>
+void for_my_blocks(const BlockRanks& ranks, std::size_t n, SharedInterrupter& shared, Work&& work)
 {
-    openvdb::CoordBBox box = block.box;
-    box.intersect(field.domain());
-    if (box.empty()) return {};
-    const octree::SampleField clipped(field, box);
-    MeshOptions bo = options;
-    bo.threads = 0; // the caller's limit holds; nested TBB work shares it
-    bo.tets = TetRegion::None;
-    bo.block_voxels = 0;
-    // eps in world units, so a block does not rescale it (eps_voxels uses the same min edge anyway).
-    if (bo.eps <= 0) bo.eps = options.eps_voxels * field.min_voxel_edge();
-    std::vector<SeedPoint> inserted;
-    FieldRun run;
-    run.field = &clipped;
-    run.inserted = &inserted;
-    // The block fixes only violations at its core (grown by one voxel, so that what it keeps was
-    // refined with its neighbourhood): the collar is there to trap the core's Voronoi cells,
-    // and refining it (or the creases where the clipped Sigma meets the box) is a neighbour's
-    // or nobody's work.
-    const openvdb::Vec3d lo = block.core.min().asVec3d() - openvdb::Vec3d(1.0);
-    const openvdb::Vec3d hi = block.core.max().asVec3d() + openvdb::Vec3d(2.0);
-    run.keep = [&field, lo, hi](const Point& p) {
-        const openvdb::Vec3d q = field.world_to_index({p.x(), p.y(), p.z()});
-        return q[0] >= lo[0] && q[1] >= lo[1] && q[2] >= lo[2] && q[0] <= hi[0] && q[1] <= hi[1] && q[2] <= hi[2];
-    };
-    mesh_field(run, bo, interrupter);
-    // Keep what the block owns (BlockSpec::own_lo/own_hi: its core's cells).
-    std::vector<SeedPoint> owned;
-    for (const SeedPoint& s : inserted) {
-        const openvdb::Vec3d q = field.world_to_index({s.p[0], s.p[1], s.p[2]});
-        bool mine = true;
-        for (int a = 0; a < 3 && mine; ++a) mine = q[a] >= block.own_lo[a] && q[a] < block.own_hi[a];
-        if (mine) owned.push_back(s);
+    std::exception_ptr failure;
+    try {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(ranks.begin(n), ranks.end(n), 1), [&](const auto& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                try {
+                    work(i);
+                } catch (const GuaranteeViolated& e) {
+                    throw GuaranteeViolated("block " + std::to_string(i) + ": " + e.what());
+                }
+                if (shared.poll(-1)) throw Cancelled("interrupted");
+            }
+        });
+    } catch (...) {
+        failure = std::current_exception();
     }
-    return owned;
+    ranks.agree(failure);
 }
+
+/// The blocks whose boxes may read points of block \p i: its neighbours within the collar.
+std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::size_t i, const std::array<int, 3>& reach)
+{
+    std::vector<std::size_t> out;
+    for (std::size_t j = 0; j < specs.size(); ++j) {
+        if (j == i) continue;
+        bool near = true;
+        for (int a = 0; a < 3 && near; ++a) near = std::abs(specs[j].index[a] - specs[i].index[a]) <= reach[a];
+        if (near) out.push_back(j);
+    }
+    return out;
+}
+
+/// Every block's new points, from every process: (block, x, y, z, kind) per point, in block order.
+std::vector<std::vector<SeedPoint>> gather_new_points(Blocks& blocks, const BlockRanks& ranks)
+{
+    const std::size_t n = blocks.size();
+    std::vector<double> mine;
+    for (std::size_t i = ranks.begin(n); i < ranks.end(n); ++i)
+        for (const SeedPoint& s : blocks[i]->take_new_points())
+            mine.insert(mine.end(), {double(i), s.p[0], s.p[1], s.p[2], double(int(s.kind))});
+    const std::vector<double> all = ranks.all_gather(mine);
+    std::vector<std::vector<SeedPoint>> fresh(n);
+    for (std::size_t k = 0; k + 4 < all.size(); k += 5)
+        fresh[std::size_t(all[k])].push_back(SeedPoint{{all[k + 1], all[k + 2], all[k + 3]}, PointKind(int(all[k + 4]))});
+    return fresh;
+}
+
+/// Exchanges points until no block receives one (partitioned_meshing.h); returns the rounds.
+/// \p inserted collects the N points the blocks inserted, round by round in block order.
+int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const std::array<int, 3>& reach,
+                    const BlockRanks& ranks, SharedInterrupter& shared, PartitionStats& ps,
+                    std::vector<SeedPoint>& inserted)
+{
+    const std::size_t n = blocks.size();
+    for (int round = 1;; ++round) {
+        const std::vector<std::vector<SeedPoint>> fresh = gather_new_points(blocks, ranks);
+        for (const auto& list : fresh)
+            for (const SeedPoint& s : list)
+                if (s.kind == PointKind::Topology || s.kind == PointKind::Geometry) inserted.push_back(s);
+        // Each of this process's blocks: its neighbours' new points, in block order.
+        std::vector<std::vector<SeedPoint>> inbox(n);
+        double sent = 0;
+        for (std::size_t j = ranks.begin(n); j < ranks.end(n); ++j) {
+            if (blocks[j]->empty()) continue;
+            for (std::size_t i : neighbours(specs, j, reach))
+                for (const SeedPoint& s : fresh[i])
+                    if (blocks[j]->reads(s.p)) inbox[j].push_back(s);
+            sent += double(inbox[j].size());
+        }
+        const double sent_everywhere = ranks.sum(sent);
+        if (sent_everywhere == 0) return round - 1;
+        if (round > kMaxExchangeRounds) {
+            std::ostringstream os;
+            os << "partitioned meshing: the blocks still exchanged " << sent_everywhere << " points after "
+               << kMaxExchangeRounds << " rounds (bound: kMaxExchangeRounds)";
+            throw GuaranteeViolated(os.str());
+        }
+        std::vector<std::size_t> added(n, 0);
+        for_my_blocks(ranks, n, shared, [&](std::size_t j) {
+            if (inbox[j].empty()) return;
+            added[j] = blocks[j]->receive(inbox[j]);
+            if (added[j]) blocks[j]->refine();
+        });
+        double mine = 0;
+        for (std::size_t a : added) mine += double(a);
+        ps.exchanged_points += std::size_t(ranks.sum(mine));
+    }
+}
+
+/// The run's counts from all blocks of all processes: each inserted point and each own-region
+/// E/G point counted once.
+void sum_block_stats(const Blocks& blocks, const BlockRanks& ranks, MeshStats& st)
+{
+    // Sums first, then maxima, then the facet-angle verdict: one collective step.
+    std::vector<double> mine(12, 0.0);
+    const std::size_t n = blocks.size();
+    for (std::size_t i = ranks.begin(n); i < ranks.end(n); ++i) {
+        const auto& b = blocks[i];
+        if (b->empty()) continue;
+        const MeshStats& s = b->stats();
+        mine[0] += double(b->own_edge_points());
+        mine[1] += double(b->own_grid_points());
+        mine[2] += double(s.n_topology);
+        mine[3] += double(s.n_geometry);
+        mine[4] += double(s.n_facet_angle);
+        mine[5] += double(s.bound_repairs);
+        mine[6] = std::max(mine[6], double(s.rounds));
+        mine[7] = std::max(mine[7], double(s.max_cells_e));
+        mine[8] = std::max(mine[8], double(s.max_cells_n));
+        mine[9] = double(s.bound_e);
+        mine[10] = double(s.bound_n);
+        mine[11] = std::max(mine[11], double(int(s.facet_angle_stop))); // Off < Met < the stops
+    }
+    const std::vector<double> all = ranks.all_gather(mine);
+    std::vector<double> t(12, 0.0);
+    for (std::size_t k = 0; k + 11 < all.size(); k += 12) {
+        for (int j = 0; j < 6; ++j) t[j] += all[k + j];
+        for (int j = 6; j < 12; ++j) t[j] = std::max(t[j], all[k + j]);
+    }
+    st.e_points = std::size_t(t[0]);
+    st.g_points = std::size_t(t[1]);
+    st.n_topology = std::size_t(t[2]);
+    st.n_geometry = std::size_t(t[3]);
+    st.n_facet_angle = std::size_t(t[4]);
+    st.bound_repairs = std::size_t(t[5]);
+    st.rounds = int(t[6]);
+    st.max_cells_e = int(t[7]);
+    st.max_cells_n = int(t[8]);
+    st.bound_e = int(t[9]);
+    st.bound_n = int(t[10]);
+    st.facet_angle_stop = FacetAngleStop(int(t[11]));
+}
+
+/// The owned triangles of every block, assembled on the first process; false (everywhere) when
+/// a facet was refused or the union does not close up.
+bool assemble_everywhere(const Blocks& blocks, const BlockRanks& ranks, SharedInterrupter& shared, SurfaceMesh& mesh,
+                         std::size_t& refused)
+{
+    const std::size_t n = blocks.size();
+    std::vector<BlockSurface> parts(n);
+    for_my_blocks(ranks, n, shared, [&](std::size_t i) { parts[i] = blocks[i]->owned_surface(); });
+    double mine_refused = 0;
+    std::vector<double> mine;
+    for (std::size_t i = ranks.begin(n); i < ranks.end(n); ++i) {
+        mine_refused += double(parts[i].balls_outside);
+        for (const WorldTriangle& t : parts[i].triangles)
+            for (const auto& p : t) mine.insert(mine.end(), p.begin(), p.end());
+    }
+    refused = std::size_t(ranks.sum(mine_refused));
+    if (refused) return false;
+    const std::vector<double> all = ranks.gather_to_first(mine);
+    double closed = 1;
+    if (ranks.first()) {
+        std::vector<BlockSurface> joined(1);
+        for (std::size_t k = 0; k + 8 < all.size(); k += 9)
+            joined[0].triangles.push_back(WorldTriangle{{{all[k], all[k + 1], all[k + 2]},
+                                                         {all[k + 3], all[k + 4], all[k + 5]},
+                                                         {all[k + 6], all[k + 7], all[k + 8]}}});
+        closed = assemble_surface(joined, mesh) ? 1 : 0;
+    }
+    return ranks.sum(closed) == 1;
+}
+
+} // namespace
 
 MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
+    check_mesh_options(options);
     const ThreadLimit threads(options.threads);
-    const std::array<int, 3> collar = collar_voxels(field);
-    const std::vector<BlockSpec> blocks = partition_domain(field, options.block_voxels, collar);
-    std::vector<std::vector<SeedPoint>> points(blocks.size());
-    std::vector<char> failed(blocks.size(), 0);
+    const BlockRanks ranks(options.transport);
+    const std::array<int, 3> r = octree::layer_radius(field);
+    // The block's points differ from the global ones only within r + 2 voxels of its box's inner
+    // faces (docs/partitioned.md, Lemma 1): its trusted box lies inside that margin.
+    const int margin = *std::max_element(r.begin(), r.end()) + 2;
+    std::array<int, 3> collar = collar_voxels(field);
     SharedInterrupter shared(interrupter);
-    std::atomic<int> done{0};
-    {
-        InterruptScope scope(interrupter, "blocks");
-        // One task per block: blocks are independent, their results land in their own slot,
-        // so the merge order (block index) does not depend on scheduling.
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& range) {
-            BlockInterrupter block_interrupter(shared);
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                try {
-                    points[i] = mesh_block(field, blocks[i], options, &block_interrupter);
-                } catch (const GuaranteeViolated& e) {
-                    block_interrupter.log(("block " + std::to_string(i) + ": " + e.what()).c_str());
-                    // A bound stopped the block: the merge's own loop does its work instead.
-                    failed[i] = 1;
-                }
-                if (shared.poll(int(100.0 * ++done / double(blocks.size())))) throw Cancelled("interrupted");
+    MeshResult result;
+    MeshStats& st = result.stats;
+    PartitionStats& ps = st.partition;
+    std::vector<SeedPoint> inserted;
+    for (int growth = 0;; ++growth) {
+        const std::vector<BlockSpec> specs = partition_domain(field, options.block_voxels, collar);
+        const std::size_t n = specs.size();
+        std::array<int, 3> reach{};
+        for (int a = 0; a < 3; ++a) reach[a] = (collar[a] + options.block_voxels) / options.block_voxels;
+        Blocks blocks(n);
+        // A block's refiner keeps its interrupter across the rounds: one per block, all sharing
+        // the caller's through SharedInterrupter.
+        std::vector<std::unique_ptr<BlockInterrupter>> interrupters(n);
+        for (auto& bi : interrupters) bi = std::make_unique<BlockInterrupter>(shared);
+        ps = PartitionStats();
+        inserted.clear();
+        {
+            InterruptScope scope(interrupter, "blocks");
+            for_my_blocks(ranks, n, shared, [&](std::size_t i) {
+                blocks[i] = std::make_unique<BlockMesher>(field, specs[i], options, margin, interrupters[i].get());
+                blocks[i]->refine();
+            });
+            ps.exchange_rounds = exchange_points(blocks, specs, reach, ranks, shared, ps, inserted);
+        }
+        std::size_t refused = 0;
+        if (!assemble_everywhere(blocks, ranks, shared, result.surface, refused)) {
+            if (growth == kMaxCollarGrowths) {
+                std::ostringstream os;
+                os << "partitioned meshing: "
+                   << (refused ? std::to_string(refused) + " owned facets' Delaunay balls leave their block"
+                               : std::string("the blocks' facets do not close up along the seams"))
+                   << " with a collar of " << collar[0] << " voxels (bound: " << kMaxCollarGrowths << " collar growths)";
+                throw GuaranteeViolated(os.str());
             }
-        });
+            for (int& c : collar) c += 2;
+            continue;
+        }
+        ps.blocks = int(n);
+        ps.collar_voxels = *std::max_element(collar.begin(), collar.end());
+        ps.collar_growths = growth;
+        sum_block_stats(blocks, ranks, st);
+        ps.block_points = st.n_topology + st.n_geometry;
+        break;
     }
     const double t_blocks = std::chrono::duration<double>(Clock::now() - t0).count();
-
-    FieldRun merge;
-    merge.field = &field;
-    for (auto& p : points) merge.seeds.insert(merge.seeds.end(), p.begin(), p.end());
-    const std::size_t from_blocks = merge.seeds.size();
-    MeshResult r = mesh_field(merge, options, interrupter);
-    PartitionStats& ps = r.stats.partition;
-    ps.blocks = int(blocks.size());
-    ps.collar_voxels = *std::max_element(collar.begin(), collar.end());
-    ps.blocks_failed = int(std::count(failed.begin(), failed.end(), 1));
-    ps.block_points = from_blocks;
-    r.stats.seconds["blocks"] = t_blocks;
-    r.stats.seconds["total"] += t_blocks;
-    return r;
+    if (options.tets != TetRegion::None) {
+        // DELVOLMESH on one triangulation of the blocks' points; its loop checks everything again.
+        FieldRun merge;
+        merge.field = &field;
+        merge.seeds = std::move(inserted);
+        MeshResult m = mesh_field(merge, options, interrupter);
+        const std::size_t seam = m.stats.partition.seam_points;
+        m.stats.partition = ps;
+        m.stats.partition.seam_points = seam;
+        m.stats.seconds["blocks"] = t_blocks;
+        m.stats.seconds["total"] += t_blocks;
+        return m;
+    }
+    st.effective_isovalue = field.effective_isovalue();
+    st.eps_world = options.eps > 0 ? options.eps : options.eps_voxels * field.min_voxel_edge();
+    st.vertices = result.surface.vertices.size();
+    st.triangles = result.surface.triangles.size();
+    st.components = surface_topology(result.surface);
+    st.seconds["blocks"] = t_blocks;
+    st.seconds["total"] = t_blocks;
+    return result;
 }
 
 } // namespace isodel::mesher

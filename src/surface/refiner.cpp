@@ -27,6 +27,21 @@ struct StepTimer {
 
 bool by_id(Vertex_handle a, Vertex_handle b) { return a->info().id < b->info().id; }
 
+/// The crossed cells whose centre \p near accepts (all without a filter): the crease samples
+/// a block of partitioned meshing checks.
+std::vector<openvdb::Coord> near_cells(const octree::SampleField& field, std::vector<openvdb::Coord> cells,
+                                       const CandidateFilter& near)
+{
+    if (!near) return cells;
+    cells.erase(std::remove_if(cells.begin(), cells.end(),
+                               [&](const openvdb::Coord& c) {
+                                   const openvdb::Vec3d w = field.index_to_world(c.asVec3d() + openvdb::Vec3d(0.5));
+                                   return !near(Point(w[0], w[1], w[2]));
+                               }),
+                cells.end());
+    return cells;
+}
+
 bool geometric(Violation kind)
 {
     return kind == Violation::Epsilon || kind == Violation::Hausdorff || kind == Violation::FacetAngle;
@@ -49,15 +64,21 @@ Refiner::Refiner(Delaunay& dt, const RefinerInput& in, std::vector<openvdb::Coor
       // Segment walks count unit cells: a leaf of level l spans 2^l of them per axis.
       max_cells_walk_((4 * (in.adaptive ? 27 : stats.bound_n) + 16) << (in.adaptive ? in.adaptive->max_level() : 0)),
       hash_cell_(0.25 * in.field->min_voxel_edge()),
-      hausdorff_(*in.field, in.eps, std::move(crossed_cells), options.snap ? in.snap_radius : 0.0)
+      hausdorff_(*in.field, in.eps, near_cells(*in.field, std::move(crossed_cells), in.near),
+                 options.snap ? in.snap_radius : 0.0)
 {
     cache_.set_far_distance(in.eps); // the eps criterion's class (FacetCache::Flagged::far)
     hausdorff_.set_filter(in.keep);
+    if (in.near) {
+        cache_.set_region(in.near);
+        loops_.set_region(in.near);
+    }
+    if (in.keep) loops_.set_keep(in.keep);
     // Theorem 3 is checked, not assumed: all of G at first.
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
-        if (v->info().kind == PointKind::Grid) grid_pending_.push_back(v);
+        if (v->info().kind == PointKind::Grid && is_near(v)) grid_pending_.push_back(v);
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
-        if (v->info().on_surface()) disk_pending_.push_back(v);
+        if (v->info().on_surface() && is_near(v)) disk_pending_.push_back(v);
     std::sort(disk_pending_.begin(), disk_pending_.end(), by_id);
     auto& steps = st_.refinement_seconds;
     for (const char* k : {"grid_cells", "facet_records", "violation_scan", "facet_loops", "cell_disks", "hausdorff",
@@ -79,6 +100,9 @@ void Refiner::log(const char* format, ...) const
 
 void Refiner::record_voxel_bound(Vertex_handle v, int cells, bool edge_point)
 {
+    // A block measures its own points only: the collar's are a neighbour's, and points next to
+    // the box's faces see the clipped field's false ones.
+    if (in_.keep && !in_.keep(v->point())) return;
     int& max_cells = edge_point ? st_.max_cells_e : st_.max_cells_n;
     const int bound = edge_point ? st_.bound_e : st_.bound_n;
     if (cells < 0 || cells > bound) over_bound_.push_back(v);
@@ -156,12 +180,59 @@ InsertionResult Refiner::insert_batch(const std::vector<Candidate>& candidates, 
     return ins;
 }
 
+std::size_t Refiner::insert_received(const std::vector<std::pair<Point, PointKind>>& points)
+{
+    StepTimer timer{st_.refinement_seconds["insertion"]};
+    std::size_t added = 0;
+    auto acc = in_.g_mask->get().getAccessor();
+    // The deferred grid points are checked again: the neighbours' points may have fixed them.
+    grid_pending_.insert(grid_pending_.end(), grid_deferred_.begin(), grid_deferred_.end());
+    grid_deferred_.clear();
+    for (const auto& [p, kind] : points) {
+        const Vertex_handle v = cache_.insert(dt_, p, VertexInfo{next_id_, kind});
+        if (v == Vertex_handle()) continue;
+        ++next_id_;
+        ++added;
+        loops_.touched(v);
+        if (kind == PointKind::Grid) {
+            // A neighbour's voxel-bound repair: Theorem 3 is checked for it here too.
+            const auto q = in_.field->world_to_index({p.x(), p.y(), p.z()});
+            acc.setValueOn(openvdb::Coord(int(std::lround(q[0])), int(std::lround(q[1])), int(std::lround(q[2]))));
+            if (is_near(v)) grid_pending_.push_back(v);
+        } else if (is_near(v)) {
+            disk_pending_.push_back(v);
+        }
+    }
+    return added;
+}
+
 std::vector<const FacetCache::Entry*> Refiner::restricted_facets() const
 {
     std::vector<const FacetCache::Entry*> restricted;
     for (const auto& e : cache_.active())
-        if (e.crossings == 1) restricted.push_back(&e);
+        if (e.crossings == 1) restricted.push_back(&e); // the cache holds the near facets only
     return restricted;
+}
+
+std::vector<Candidate> Refiner::grid_cell_candidates()
+{
+    std::vector<Candidate> found = grid_cell_violations(dt_, *in_.field, grid_pending_, max_cells_walk_);
+    if (!in_.keep) return found;
+    // A violation whose point is another block's waits, off the pending list, until points come
+    // in from the neighbours (insert_received): its Voronoi cell changes only then, or by this
+    // block's own points, which cannot fix it (it is not theirs to fix).
+    std::vector<Candidate> kept;
+    std::vector<Vertex_handle> still;
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        if (in_.keep(found[i].p)) {
+            kept.push_back(found[i]);
+            still.push_back(grid_pending_[i]);
+        } else {
+            grid_deferred_.push_back(grid_pending_[i]);
+        }
+    }
+    grid_pending_.swap(still);
+    return kept;
 }
 
 ViolationReport Refiner::grid_cells_and_facets(double& update_seconds)
@@ -175,8 +246,7 @@ ViolationReport Refiner::grid_cells_and_facets(double& update_seconds)
     // own bound, so voxel-bound holes can wait.
     if (!cache_.scanned()) {
         StepTimer timer{steps["grid_cells"]};
-        rep.candidates = grid_cell_violations(dt_, *in_.field, grid_pending_, max_cells_walk_);
-        filter_candidates(rep.candidates, in_.keep);
+        rep.candidates = grid_cell_candidates();
     }
     if (rep.candidates.empty()) {
         bool unbounded;
@@ -188,8 +258,7 @@ ViolationReport Refiner::grid_cells_and_facets(double& update_seconds)
         update_seconds = seconds_since(t0);
         // Then: voxel-bound holes, Theorem 3 again, the ViolationFinder's classes.
         StepTimer timer{steps["grid_cells"]};
-        if (!unbounded) rep.candidates = grid_cell_violations(dt_, *in_.field, grid_pending_, max_cells_walk_);
-        filter_candidates(rep.candidates, in_.keep);
+        if (!unbounded) rep.candidates = grid_cell_candidates();
     }
     if (!rep.candidates.empty()) {
         rep.kind = Violation::GridCell;
@@ -291,7 +360,7 @@ std::size_t Refiner::follow_voronoi_edge_cascade()
     return cascade;
 }
 
-void Refiner::run(bool stop_without_progress)
+bool Refiner::run(bool stop_without_progress)
 {
     auto& steps = st_.refinement_seconds;
     double t_topology = 0, t_refine = 0;
@@ -323,7 +392,7 @@ void Refiner::run(bool stop_without_progress)
             for (const auto& e : cache_.active())
                 if (e.overflow)
                     for (const auto& v : facet_vertices(e.facet))
-                        if (v->info().on_surface()) over_bound_.push_back(v);
+                        if (v->info().on_surface() && (!in_.keep || in_.keep(v->point()))) over_bound_.push_back(v);
             if (st_.bound_repairs > 10 * st_.g_points + 1000)
                 throw GuaranteeViolated("voxel bound repairs did not converge (bound: 10 |G| + 1000 grid points)");
             t_topology += seconds_since(tr);
@@ -345,10 +414,13 @@ void Refiner::run(bool stop_without_progress)
                << to_string(rep.kind) << ": guarantees not certified";
             throw GuaranteeViolated(os.str());
         }
-        // A block (partitioned meshing) stops here: near its keep boundary some violations are
-        // a neighbour's, and the candidates left may be vertices already; the merge's own loop
-        // checks everything again.
-        if (ins.inserted.empty() && stop_without_progress) break;
+        // A block sees its neighbours' points only through the exchange: a violation next to
+        // its seam may wait for them (partitioned_meshing.h).
+        if (ins.inserted.empty() && stop_without_progress) {
+            st_.seconds["closed_ball"] = t_topology;
+            st_.seconds["refine"] = t_refine;
+            return false;
+        }
         if (ins.inserted.empty() && rep.kind == Violation::FacetAngle) {
             st_.facet_angle_stop = FacetAngleStop::NoProgress; // its candidates are vertices already
             continue;
@@ -363,6 +435,7 @@ void Refiner::run(bool stop_without_progress)
     }
     st_.seconds["closed_ball"] = t_topology;
     st_.seconds["refine"] = t_refine;
+    return true;
 }
 
 } // namespace isodel::mesher

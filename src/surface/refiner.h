@@ -45,6 +45,9 @@ struct RefinerInput {
     double snap_radius = 0;  ///< how far snapped vertices may be from Sigma' (0 without --snap)
     double slab_h_world = 0; ///< the face slabs' half-width in world units
     CandidateFilter keep;    ///< which violations this run fixes (all when empty)
+    /// Which Voronoi elements this run checks, by their vertices (all when empty): a block of
+    /// partitioned meshing checks those whose candidates may fall in its own region (keep).
+    CandidateFilter near;
 };
 
 class Refiner {
@@ -57,9 +60,15 @@ public:
     /// Theorem 2 measured on the first triangulation: the cells met by the Voronoi cells of
     /// E and N points, held to their bounds; points beyond them are repaired in the first round.
     void measure_voxel_bound();
-    /// Rounds until every check passes; in block mode (\p stop_without_progress) also when a
-    /// round inserts nothing (a neighbour's violations). \throw GuaranteeViolated at a bound.
-    void run(bool stop_without_progress);
+    /// Rounds until every check passes (for the violations RefinerInput::keep selects). With
+    /// \p stop_without_progress (a block of partitioned meshing) a round whose candidates are
+    /// all vertices already ends the run instead of throwing, and returns false.
+    /// \throw GuaranteeViolated at a bound.
+    bool run(bool stop_without_progress = false);
+    /// Partitioned meshing: inserts points a neighbouring block inserted (block_mesher.h) and
+    /// hands them to the checks as this run's own would be, but measures no voxel bound for
+    /// them (their own block does). Returns how many were not vertices already.
+    std::size_t insert_received(const std::vector<std::pair<Point, PointKind>>& points);
 
     const FacetCache& cache() const { return cache_; }
     FacetCache& cache() { return cache_; } ///< the tets phase inserts G' through it
@@ -70,6 +79,8 @@ public:
 private:
     using Check = ViolationReport (Refiner::*)();
     ViolationReport grid_cells_and_facets(double& update_seconds);
+    /// Theorem 3's violations (grid_cell_check.h) whose candidates keep accepts.
+    std::vector<Candidate> grid_cell_candidates();
     ViolationReport facet_loops();
     ViolationReport cell_disks();
     ViolationReport hausdorff_distances();
@@ -85,6 +96,7 @@ private:
     /// the points it inserted.
     std::size_t follow_voronoi_edge_cascade();
     void record_voxel_bound(Vertex_handle v, int cells, bool edge_point);
+    bool is_near(const Vertex_handle& v) const { return !in_.near || in_.near(v->point()); }
     /// Surface facets with one crossing: the restricted facets of M.
     std::vector<const FacetCache::Entry*> restricted_facets() const;
     /// A trace line for the caller's log (Interrupter::log), formatted as printf does.
@@ -106,6 +118,7 @@ private:
     ViolationFinder violations_;
     std::vector<Vertex_handle> over_bound_;   ///< vertices whose Voronoi cell left its bound
     std::vector<Vertex_handle> grid_pending_; ///< grid points whose Voronoi cell may meet Sigma
+    std::vector<Vertex_handle> grid_deferred_; ///< ... where the point to insert is a neighbour's
     std::vector<Vertex_handle> disk_pending_; ///< surface vertices not yet certified a disk
 };
 

@@ -52,13 +52,13 @@ TEST_CASE("the blocks' cores tile the domain's cells once, their boxes add the c
     openvdb::FloatGrid::ConstPtr g = grid;
     const octree::SampleField field(g, 0.0, Inside::Above);
     const auto collar = mesher::collar_voxels(field);
-    CHECK(collar == std::array<int, 3>{4, 4, 4}); // 2r + 2, r = 1 on cubic voxels
+    CHECK(collar == std::array<int, 3>{6, 6, 6}); // 2r + 4, r = 1 on cubic voxels
     const auto blocks = mesher::partition_domain(field, 7, collar);
     const openvdb::CoordBBox cells(field.domain().min(), field.domain().max().offsetBy(-1));
     std::map<openvdb::Coord, int> owners;
     for (const auto& b : blocks) {
-        CHECK(b.box.min() == b.core.min().offsetBy(-4));
-        CHECK(b.box.max() == b.core.max().offsetBy(1 + 4));
+        CHECK(b.box.min() == b.core.min().offsetBy(-6));
+        CHECK(b.box.max() == b.core.max().offsetBy(1 + 6));
         for (auto it = b.core.beginZYX(); it; ++it)
             if (cells.isInside(*it)) ++owners[*it];
     }
@@ -118,7 +118,7 @@ TEST_CASE("partitioned meshes verify: topology, eps and Delaunay conformity", "[
             INFO(rep.summary());
             CHECK(rep.passed());
             CHECK(rep.topology_verdict == TopologyVerdict::Pass);
-            CHECK(r.stats.partition.blocks_failed == 0);
+            CHECK(r.stats.partition.exchange_rounds >= 1);
         }
     }
 }
