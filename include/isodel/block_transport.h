@@ -6,8 +6,7 @@
 /// supplies an MPI implementation (tools/isodel/mpi_transport.h) when it is built with MPI and
 /// started by mpirun.
 ///
-/// Process r meshes the blocks [r n / P, (r + 1) n / P) of the n blocks in block order (P
-/// processes); the rounds of point exchange are collective, so every process must call
+/// Process r of P meshes the blocks r, r + P, r + 2P, ... of the n blocks in block order; the rounds of point exchange are collective, so every process must call
 /// mesh_isosurface with the same volume and options. The mesh is the same for every P and for
 /// the thread engine (transport = nullptr); process 0 returns it, the others an empty surface.
 

@@ -28,6 +28,8 @@ struct PartitionStats {
     std::size_t exchanged_points = 0;     ///< points a block received that were new to it (summed)
     std::size_t block_points = 0;         ///< N points the blocks inserted
     std::size_t seam_points = 0;          ///< with tetrahedra: N points the merged triangulation added
+    int processes = 1;                    ///< processes the blocks ran on (MeshOptions::transport)
+    std::size_t max_process_peak_memory_bytes = 0; ///< the largest peak memory of one process
 };
 
 /// Quality and size of the tetrahedral mesh (all figures over the returned tetrahedra).

@@ -20,9 +20,15 @@ public:
     int rank() const { return t_ ? t_->rank() : 0; }
     int size() const { return t_ ? t_->size() : 1; }
     bool first() const { return rank() == 0; }
-    /// This process's blocks of \p n, in block order: [begin, end).
-    std::size_t begin(std::size_t n) const { return n * std::size_t(rank()) / std::size_t(size()); }
-    std::size_t end(std::size_t n) const { return n * std::size_t(rank() + 1) / std::size_t(size()); }
+    /// This process's blocks of \p n, in block order: every size()-th from rank(). Dealt round
+    /// robin, since blocks in block order are layers of the volume, and the surface's share of a
+    /// layer varies: contiguous runs would give one process the dense layers.
+    std::vector<std::size_t> mine(std::size_t n) const
+    {
+        std::vector<std::size_t> out;
+        for (std::size_t i = std::size_t(rank()); i < n; i += std::size_t(size())) out.push_back(i);
+        return out;
+    }
 
     std::vector<double> all_gather(const std::vector<double>& mine) const { return t_ ? t_->all_gather(mine) : mine; }
     std::vector<double> gather_to_first(const std::vector<double>& mine) const

@@ -33,16 +33,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+} // namespace
+
+namespace mesher {
+
 std::size_t peak_memory_bytes()
 {
     rusage ru{};
     getrusage(RUSAGE_SELF, &ru);
     return std::size_t(ru.ru_maxrss) * 1024;
 }
-
-} // namespace
-
-namespace mesher {
 
 Inside inside_side(const openvdb::FloatGrid& grid, const MeshOptions& options)
 {

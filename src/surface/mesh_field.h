@@ -37,6 +37,9 @@ struct FieldRun {
     std::vector<std::array<double, 3>>* final_points = nullptr;
 };
 
+/// This process's peak resident memory so far (MeshStats::peak_memory_bytes).
+std::size_t peak_memory_bytes();
+
 /// The side that is inside: options.inside, else Below for level sets and Above otherwise.
 Inside inside_side(const openvdb::FloatGrid& grid, const MeshOptions& options);
 

@@ -124,9 +124,11 @@ template <class Work>
 void for_my_blocks(const BlockRanks& ranks, std::size_t n, SharedInterrupter& shared, Work&& work)
 {
     std::exception_ptr failure;
+    const std::vector<std::size_t> mine = ranks.mine(n);
     try {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(ranks.begin(n), ranks.end(n), 1), [&](const auto& range) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mine.size(), 1), [&](const auto& range) {
+            for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                const std::size_t i = mine[k];
                 try {
                     work(i);
                 } catch (const GuaranteeViolated& e) {
@@ -159,7 +161,7 @@ std::vector<std::vector<SeedPoint>> gather_new_points(Blocks& blocks, const Bloc
 {
     const std::size_t n = blocks.size();
     std::vector<double> mine;
-    for (std::size_t i = ranks.begin(n); i < ranks.end(n); ++i)
+    for (std::size_t i : ranks.mine(n))
         for (const SeedPoint& s : blocks[i]->take_new_points())
             mine.insert(mine.end(), {double(i), s.p[0], s.p[1], s.p[2], double(int(s.kind))});
     const std::vector<double> all = ranks.all_gather(mine);
@@ -184,7 +186,7 @@ int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const s
         // Each of this process's blocks: its neighbours' new points, in block order.
         std::vector<std::vector<SeedPoint>> inbox(n);
         double sent = 0;
-        for (std::size_t j = ranks.begin(n); j < ranks.end(n); ++j) {
+        for (std::size_t j : ranks.mine(n)) {
             if (blocks[j]->empty()) continue;
             for (std::size_t i : neighbours(specs, j, reach))
                 for (const SeedPoint& s : fresh[i])
@@ -218,7 +220,7 @@ void sum_block_stats(const Blocks& blocks, const BlockRanks& ranks, MeshStats& s
     // Sums first, then maxima, then the facet-angle verdict: one collective step.
     std::vector<double> mine(12, 0.0);
     const std::size_t n = blocks.size();
-    for (std::size_t i = ranks.begin(n); i < ranks.end(n); ++i) {
+    for (std::size_t i : ranks.mine(n)) {
         const auto& b = blocks[i];
         if (b->empty()) continue;
         const MeshStats& s = b->stats();
@@ -265,21 +267,24 @@ bool assemble_everywhere(const Blocks& blocks, const BlockRanks& ranks, SharedIn
     for_my_blocks(ranks, n, shared, [&](std::size_t i) { parts[i] = blocks[i]->owned_surface(); });
     double mine_refused = 0;
     std::vector<double> mine;
-    for (std::size_t i = ranks.begin(n); i < ranks.end(n); ++i) {
+    for (std::size_t i : ranks.mine(n)) {
         mine_refused += double(parts[i].balls_outside);
-        for (const WorldTriangle& t : parts[i].triangles)
+        for (const WorldTriangle& t : parts[i].triangles) {
+            mine.push_back(double(i));
             for (const auto& p : t) mine.insert(mine.end(), p.begin(), p.end());
+        }
     }
     refused = std::size_t(ranks.sum(mine_refused));
     if (refused) return false;
     const std::vector<double> all = ranks.gather_to_first(mine);
-    double closed = 1;
+    double closed = 0; // the first process's verdict, shared by the sum
     if (ranks.first()) {
-        std::vector<BlockSurface> joined(1);
-        for (std::size_t k = 0; k + 8 < all.size(); k += 9)
-            joined[0].triangles.push_back(WorldTriangle{{{all[k], all[k + 1], all[k + 2]},
-                                                         {all[k + 3], all[k + 4], all[k + 5]},
-                                                         {all[k + 6], all[k + 7], all[k + 8]}}});
+        // In block order, whichever process meshed the block: the same mesh for any count.
+        std::vector<BlockSurface> joined(n);
+        for (std::size_t k = 0; k + 9 < all.size(); k += 10)
+            joined[std::size_t(all[k])].triangles.push_back(WorldTriangle{{{all[k + 1], all[k + 2], all[k + 3]},
+                                                                           {all[k + 4], all[k + 5], all[k + 6]},
+                                                                           {all[k + 7], all[k + 8], all[k + 9]}}});
         closed = assemble_surface(joined, mesh) ? 1 : 0;
     }
     return ranks.sum(closed) == 1;
@@ -364,6 +369,10 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
     st.components = surface_topology(result.surface);
     st.seconds["blocks"] = t_blocks;
     st.seconds["total"] = t_blocks;
+    st.peak_memory_bytes = peak_memory_bytes();
+    ps.processes = ranks.size();
+    const std::vector<double> peaks = ranks.all_gather({double(st.peak_memory_bytes)});
+    ps.max_process_peak_memory_bytes = std::size_t(*std::max_element(peaks.begin(), peaks.end()));
     return result;
 }
 

@@ -1,14 +1,17 @@
 // isodel mesh: read a volume, run DELSURFMESH (include/isodel/mesh.h), write the surface and
 // optionally the statistics. Outputs are written atomically, after meshing succeeded.
 #include "cli_common.h"
+#include "mpi_transport.h"
 
 #include "io/atomic_file.h"
+#include "surface/block_ranks.h"
 
 #include <isodel/adaptive.h>
 #include <isodel/errors.h>
 #include <isodel/mesh.h>
 
 #include <chrono>
+#include <exception>
 #include <iostream>
 
 namespace isodel::cli {
@@ -146,11 +149,29 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                                ": needs --adaptive (the octree it writes is "
                                "the one --adaptive builds)");
 
-        ProgressReporter progress(o->quiet, o->trace);
+        // mpirun -np N: the blocks spread over the processes (docs/partitioned.md); the first
+        // process reports progress and writes the mesh.
+        MpiSession& mpi = mpi_session();
+        if (mpi.several()) {
+            if (mo.block_voxels == 0)
+                throw InvalidInput("isodel mesh under mpirun with " + std::to_string(mpi.size()) +
+                                   " processes needs --blocks B (the blocks are what the processes share)");
+            mo.transport = mpi.transport();
+            check_mesh_options(mo);
+        }
+        ProgressReporter progress(o->quiet || mpi.rank() != 0, o->trace && mpi.rank() == 0);
         const auto t0 = std::chrono::steady_clock::now();
         progress.start("read");
-        const Volume vol = read_input(o->in);
-        check_isovalue(vol, o->iso);
+        Volume vol;
+        std::exception_ptr read_failure;
+        try {
+            vol = read_input(o->in);
+            check_isovalue(vol, o->iso);
+        } catch (...) {
+            read_failure = std::current_exception();
+        }
+        // Every process read the file: if one could not, all stop here rather than wait for it.
+        mesher::BlockRanks(mo.transport).agree(read_failure);
         progress.end();
         const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         mo.inside = o->inside.empty() ? vol.default_inside : (o->inside == "above" ? Inside::Above : Inside::Below);
@@ -168,6 +189,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
             throw GuaranteeViolated(o->in.path + ": " + e.what()); // name the file (exit status 1)
         }
 
+        if (mpi.rank() != 0) return; // the first process holds the mesh and writes it
         const auto tw = std::chrono::steady_clock::now();
         progress.start("write");
         write_surface_mesh(o->out, res.surface);

@@ -2,6 +2,7 @@
 // to exit codes: bad usage or input -> 2 with one line "isodel: <message>" on stderr,
 // a guarantee that could not be certified -> 1, Ctrl-C -> 130.
 #include "cli_common.h"
+#include "mpi_transport.h"
 
 #include <isodel/errors.h>
 
@@ -12,6 +13,10 @@
 int main(int argc, char** argv)
 {
     using namespace isodel::cli;
+    MpiSession mpi(argc, argv); // inactive unless mpirun started this process
+    // Under mpirun every process fails together (partitioned meshing agrees on failures), and the
+    // first one alone says why: one message, not one per process.
+    if (mpi.rank() != 0) std::cerr.setstate(std::ios::failbit);
     openvdb::initialize();
     CLI::App app{"isodel: Delaunay meshes of level sets of sampled volumes, with guarantees\n"
                  "(Goswami, Gillette, Bajaj, IMR 2007)"};

@@ -1,0 +1,91 @@
+// `mpirun -np N isodel mesh ... --blocks B` (docs/partitioned.md): the blocks spread over MPI
+// processes give the thread engine's mesh byte for byte at any process count, and that mesh
+// verifies; without --blocks the run is refused; a process that fails ends the run everywhere
+// with one message naming the block, and nothing is written.
+#include "support/json.h"
+#include "support/test_files.h"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+using namespace isodel::test;
+
+namespace {
+
+#ifdef ISODEL_MPIRUN
+/// mpirun with \p np processes (oversubscribed: CI has 2 cores; root allowed: CI runs as root).
+RunResult run_mpi(int np, const std::string& args, const std::string& scratch)
+{
+    return run("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + shell_quote(ISODEL_MPIRUN) + " -np " +
+                   std::to_string(np) + " --oversubscribe --bind-to none " + shell_quote(ISODEL_CLI) + " " + args,
+               scratch);
+}
+#endif
+
+} // namespace
+
+TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verifies", "[cli][partition][mpi]")
+{
+#ifndef ISODEL_MPIRUN
+    WARN("skipped: isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
+#else
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string common = " --iso 0 --eps-voxels 0.25 --blocks 12 --quiet";
+    const std::string threads = tmp / "threads.ply";
+    const RunResult t = run_isodel("mesh " + shell_quote(torus) + common + " --threads 2 -o " + shell_quote(threads), tmp.path());
+    INFO(t.err);
+    REQUIRE(t.status == 0);
+    const RunResult v = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.25 --mesh " + shell_quote(threads),
+                                   tmp.path());
+    INFO(v.out << v.err);
+    CHECK(v.status == 0);
+    CHECK(v.out.find("VERIFIED") != std::string::npos);
+    const std::string expected = read_text(threads);
+    for (int np : {1, 2, 4}) {
+        INFO(np << " processes");
+        const std::string out = tmp / ("np" + std::to_string(np) + ".ply"), stats = tmp / ("np" + std::to_string(np) + ".json");
+        const RunResult m = run_mpi(np, "mesh " + shell_quote(torus) + common + " --threads 1 -o " + shell_quote(out) +
+                                            " --stats " + shell_quote(stats),
+                                    tmp.path());
+        INFO(m.err);
+        REQUIRE(m.status == 0);
+        CHECK(read_text(out) == expected);
+        const auto s = isodel::testing::read_json_file(stats);
+        CHECK(s.at("partition").at("processes").get<int>() == np);
+        CHECK(s.at("topology").at("components").get<int>() == 1);
+    }
+#endif
+}
+
+TEST_CASE("mpirun: refusals and a failing process end the run with one message and no file", "[cli][partition][mpi]")
+{
+#ifndef ISODEL_MPIRUN
+    WARN("skipped: isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
+#else
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string out = tmp / "m.ply";
+    // Several processes need blocks to share.
+    RunResult r = run_mpi(2, "mesh " + shell_quote(torus) + " --iso 0 --quiet -o " + shell_quote(out), tmp.path());
+    CHECK(r.status == 2);
+    CHECK(r.err.find("needs --blocks") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+    // Every block stops at the round bound: every process ends, the first says which block once.
+    r = run_mpi(2, "mesh " + shell_quote(torus) + " --iso 0 --eps-voxels 0.1 --blocks 12 --max-rounds 1 --quiet -o " + shell_quote(out),
+                tmp.path());
+    INFO(r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err.find("block ") != std::string::npos);
+    CHECK(r.err.find("round bound") != std::string::npos);
+    std::size_t lines = 0;
+    for (std::size_t p = r.err.find("isodel:"); p != std::string::npos; p = r.err.find("isodel:", p + 1)) ++lines;
+    CHECK(lines == 1);
+    CHECK_FALSE(std::filesystem::exists(out));
+    // A file only one process could not read is everybody's error: nobody waits for it.
+    r = run_mpi(2, "mesh " + shell_quote(tmp / "missing.vdb") + " --iso 0 --blocks 12 --quiet -o " + shell_quote(out), tmp.path());
+    CHECK(r.status == 2);
+    CHECK_FALSE(std::filesystem::exists(out));
+#endif
+}

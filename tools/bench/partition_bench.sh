@@ -1,0 +1,51 @@
+#!/bin/bash
+# partition_bench.sh VOLUME ISO EPS_VOXELS BLOCK [BIN_DIR] [INSIDE]
+# Partitioned meshing (docs/partitioned.md) against one process, same run, on this machine:
+#   one process, 1 thread, no blocks (the baseline); one process, 2 threads, no blocks;
+#   --blocks on 2 threads (the thread engine); mpirun -np 2 with 1 thread per process;
+#   mpirun -np 8 --oversubscribe with 1 thread per process.
+# Prints a markdown table: wall seconds, the largest peak memory of one process, vertices, and
+# both as ratios to the baseline. Every partitioned mesh must equal the thread engine's, byte
+# for byte (the column "same mesh").
+set -u
+VOL=$1; ISO=$2; EPS=$3; B=$4; BIN=${5:-build/bin}; INSIDE=${6:-above}
+OUT=$(mktemp -d); trap 'rm -rf "$OUT"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+run() { # NAME LAUNCHER... -- ISODEL ARGS
+  local name=$1; shift
+  local t0 t1
+  t0=$(date +%s.%N)
+  "$@" mesh "$VOL" --iso "$ISO" --inside "$INSIDE" --eps-voxels "$EPS" -o "$OUT/$name.ply" --stats "$OUT/$name.json" \
+    --quiet ${EXTRA:-} || { echo "| $name | failed | | | | | |"; return; }
+  t1=$(date +%s.%N)
+  echo "$name $(echo "$t1 - $t0" | bc)" >> "$OUT/times"
+}
+EXTRA="--threads 1" run one_1t "$BIN/isodel"
+EXTRA="--threads 2" run one_2t "$BIN/isodel"
+EXTRA="--threads 2 --blocks $B" run blocks_2t "$BIN/isodel"
+EXTRA="--threads 1 --blocks $B" run mpi_np2 mpirun -np 2 --bind-to none "$BIN/isodel"
+EXTRA="--threads 1 --blocks $B" run mpi_np8 mpirun -np 8 --bind-to none "$BIN/isodel"
+/usr/bin/python3 - "$OUT" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+times = dict(l.split() for l in open(os.path.join(out, "times")))
+def row(name):
+    s = json.load(open(os.path.join(out, name + ".json")))
+    p = s.get("partition", {})
+    mem = p.get("max_process_peak_memory_bytes") or s.get("peak_memory_bytes", 0)
+    return float(times[name]), mem, s["counts"]["vertices"], p
+base_t, base_m, base_v, _ = row("one_1t")
+ref = open(os.path.join(out, "blocks_2t.ply"), "rb").read() if os.path.exists(os.path.join(out, "blocks_2t.ply")) else None
+print("| run | wall s | vs 1 process 1 thread | peak memory per process | vs baseline | vertices | blocks, rounds | same mesh |")
+print("| --- | ---: | ---: | ---: | ---: | ---: | --- | --- |")
+for name, label in [("one_1t", "1 process, 1 thread"), ("one_2t", "1 process, 2 threads"),
+                    ("blocks_2t", "--blocks, 2 threads"), ("mpi_np2", "mpirun -np 2, 1 thread each"),
+                    ("mpi_np8", "mpirun -np 8, 1 thread each")]:
+    if name not in times: continue
+    t, m, v, p = row(name)
+    same = ""
+    if p:
+        same = "yes" if open(os.path.join(out, name + ".ply"), "rb").read() == ref else "NO"
+    blocks = f"{p.get('blocks')}, {p.get('exchange_rounds')}" if p else ""
+    print(f"| {label} | {t:.2f} | {base_t / t:.2f}x | {m / 2**20:.0f} MiB | {m / base_m:.2f} | {v} | {blocks} | {same} |")
+PY
