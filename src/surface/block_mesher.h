@@ -1,11 +1,11 @@
 #pragma once
 // Internal: one block of partitioned meshing (partitioned_meshing.h), kept alive across the
-// rounds of point exchange. It meshes its box (core and collar) of the field clipped to the box,
-// fixes exactly the violations whose candidate point lies in its own region, hands out the
-// points it inserted and takes in its neighbours', and finally reports the restricted facets it
-// owns: those whose smallest vertex lies in its own region and whose two Delaunay balls lie in
-// its trusted box, where its points are the global ones (docs/partitioned.md proves why those
-// facets are the global ones).
+// rounds of point exchange. It takes E, G and the seeds from the cells of its box (core and
+// collar), checks the Voronoi elements near its own region and fixes exactly the violations
+// whose candidate point lies in that region, hands out the points it inserted and takes in its
+// neighbours', and finally reports the restricted facets it owns: those whose smallest vertex
+// lies in its own region and whose two Delaunay balls lie in its trusted box, where its points
+// are the global ones (docs/partitioned.md proves why those facets are the global ones).
 #include "surface/surface_pipeline.h"
 
 #include <openvdb/openvdb.h>
@@ -37,9 +37,9 @@ struct BlockSurface {
 class BlockMesher {
 public:
     /// Steps 1-3 with E and G from the cells of block.box (the options' eps in world units of
-    /// \p field, which must outlive the block), then the voxel bound of its own points. \p trusted_margin: how far
-    /// inside the box's inner faces the block's points may differ from the global ones (the
-    /// clipped field's false crossings and their protective layer), in voxels.
+    /// \p field, which must outlive the block), then the voxel bound of its own points.
+    /// \p trusted_margin: how far inside the box's inner faces the block's points may differ
+    /// from the global ones (the protective layer and seeds of cells beyond the box), in voxels.
     BlockMesher(const octree::SampleField& field, const BlockSpec& block, const MeshOptions& options, int trusted_margin,
                 Interrupter* interrupter);
     BlockMesher(const BlockMesher&) = delete;
