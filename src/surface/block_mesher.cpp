@@ -160,28 +160,27 @@ BlockSurface BlockMesher::owned_surface() const
     return out;
 }
 
-std::size_t BlockMesher::own_edge_points() const
+template <class Counted>
+std::size_t BlockMesher::count_own(Counted counted) const
 {
     std::size_t n = 0;
     if (empty()) return n;
     const Delaunay& dt = pipeline_->dt();
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-        if ((v->info().kind == PointKind::Edge || v->info().kind == PointKind::Snapped) &&
-            owns({v->point().x(), v->point().y(), v->point().z()}))
-            ++n;
+        if (counted(v->info()) && owns({v->point().x(), v->point().y(), v->point().z()})) ++n;
     return n;
+}
+
+std::size_t BlockMesher::own_edge_points() const
+{
+    return count_own([](const VertexInfo& i) { return i.kind == PointKind::Edge || i.kind == PointKind::Snapped; });
 }
 
 std::size_t BlockMesher::own_grid_points() const
 {
-    std::size_t n = 0;
-    if (empty()) return n;
-    const Delaunay& dt = pipeline_->dt();
-    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-        if (v->info().kind == PointKind::Grid && v->info().id < pipeline_->first_inserted() &&
-            owns({v->point().x(), v->point().y(), v->point().z()}))
-            ++n;
-    return n;
+    // G as the first triangulation had it: the repairs come later, and are counted apart.
+    const std::uint32_t first = pipeline_ ? pipeline_->first_inserted() : 0;
+    return count_own([first](const VertexInfo& i) { return i.kind == PointKind::Grid && i.id < first; });
 }
 
 } // namespace isodel::mesher

@@ -77,6 +77,9 @@ public:
 
 private:
     bool ball_trusted(const Cell_handle& c) const;
+    /// Vertices in the own region whose info \p counted accepts.
+    template <class Counted>
+    std::size_t count_own(Counted counted) const;
     openvdb::Vec3d index_of(const Point& p) const;
 
     BlockSpec spec_;

@@ -258,13 +258,17 @@ void sum_block_stats(const Blocks& blocks, const BlockRanks& ranks, MeshStats& s
 }
 
 /// The owned triangles of every block, assembled on the first process; false (everywhere) when
-/// a facet was refused or the union does not close up.
-bool assemble_everywhere(const Blocks& blocks, const BlockRanks& ranks, SharedInterrupter& shared, SurfaceMesh& mesh,
+/// a facet was refused or the union does not close up. The blocks are released once their
+/// triangles are out, so that a process does not hold its triangulations and the mesh at once.
+bool assemble_everywhere(Blocks& blocks, const BlockRanks& ranks, SharedInterrupter& shared, SurfaceMesh& mesh,
                          std::size_t& refused)
 {
     const std::size_t n = blocks.size();
     std::vector<BlockSurface> parts(n);
-    for_my_blocks(ranks, n, shared, [&](std::size_t i) { parts[i] = blocks[i]->owned_surface(); });
+    for_my_blocks(ranks, n, shared, [&](std::size_t i) {
+        parts[i] = blocks[i]->owned_surface();
+        blocks[i].reset();
+    });
     double mine_refused = 0;
     std::vector<double> mine;
     for (std::size_t i : ranks.mine(n)) {
@@ -273,6 +277,7 @@ bool assemble_everywhere(const Blocks& blocks, const BlockRanks& ranks, SharedIn
             mine.push_back(double(i));
             for (const auto& p : t) mine.insert(mine.end(), p.begin(), p.end());
         }
+        parts[i] = BlockSurface();
     }
     refused = std::size_t(ranks.sum(mine_refused));
     if (refused) return false;
@@ -328,6 +333,7 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
             });
             ps.exchange_rounds = exchange_points(blocks, specs, reach, ranks, shared, ps, inserted);
         }
+        sum_block_stats(blocks, ranks, st);
         std::size_t refused = 0;
         if (!assemble_everywhere(blocks, ranks, shared, result.surface, refused)) {
             if (growth == kMaxCollarGrowths) {
@@ -344,7 +350,6 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
         ps.blocks = int(n);
         ps.collar_voxels = *std::max_element(collar.begin(), collar.end());
         ps.collar_growths = growth;
-        sum_block_stats(blocks, ranks, st);
         ps.block_points = st.n_topology + st.n_geometry;
         break;
     }

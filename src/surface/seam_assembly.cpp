@@ -2,6 +2,7 @@
 // share is the same point of P in both, with the same coordinates to the bit, so vertices are
 // merged by their coordinates, never by a distance tolerance.
 #include "surface/partitioned_meshing.h"
+#include "surface/surface_extraction.h"
 
 #include <algorithm>
 #include <map>
@@ -35,15 +36,7 @@ bool assemble_surface(const std::vector<BlockSurface>& parts, SurfaceMesh& mesh)
         return false;
     }
 
-    // The same deterministic triangle order as extract_surface: by sorted vertex indices.
-    using Tri = std::array<std::int32_t, 3>;
-    std::vector<std::pair<Tri, Tri>> keyed(mesh.triangles.size());
-    for (std::size_t i = 0; i < keyed.size(); ++i) {
-        keyed[i] = {mesh.triangles[i], mesh.triangles[i]};
-        std::sort(keyed[i].first.begin(), keyed[i].first.end());
-    }
-    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t i = 0; i < keyed.size(); ++i) mesh.triangles[i] = keyed[i].second;
+    sort_triangles(mesh); // the order extract_surface gives
     return true;
 }
 

@@ -34,8 +34,12 @@ SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache)
         if (n * e.record->outward < 0) std::swap(vs[1], vs[2]);
         mesh.triangles.push_back({index[vs[0]->info().id], index[vs[1]->info().id], index[vs[2]->info().id]});
     }
-    // Deterministic triangle order, independent of the triangulation's memory layout: by sorted
-    // vertex indices (distinct for distinct triangles).
+    sort_triangles(mesh);
+    return mesh;
+}
+
+void sort_triangles(SurfaceMesh& mesh)
+{
     using Tri = std::array<std::int32_t, 3>;
     std::vector<std::pair<Tri, Tri>> keyed(mesh.triangles.size());
     for (std::size_t i = 0; i < keyed.size(); ++i) {
@@ -44,7 +48,6 @@ SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache)
     }
     std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t i = 0; i < keyed.size(); ++i) mesh.triangles[i] = keyed[i].second;
-    return mesh;
 }
 
 std::vector<ComponentTopology> surface_topology(const SurfaceMesh& mesh)

@@ -9,6 +9,10 @@ namespace isodel::mesher {
 
 SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache);
 
+/// The deterministic triangle order, independent of the triangulation's memory layout: by
+/// sorted vertex indices (distinct for distinct triangles).
+void sort_triangles(SurfaceMesh& mesh);
+
 /// Components of a closed triangle mesh with their Euler characteristic and genus.
 std::vector<ComponentTopology> surface_topology(const SurfaceMesh& mesh);
 
