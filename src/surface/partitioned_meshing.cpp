@@ -143,16 +143,19 @@ void for_my_blocks(const BlockRanks& ranks, std::size_t n, SharedInterrupter& sh
     ranks.agree(failure);
 }
 
-/// The blocks whose boxes may read points of block \p i: its neighbours within the collar.
+/// The blocks whose boxes may read points of block \p i: its neighbours within \p reach blocks
+/// per axis, found on the block lattice (partition_domain's order: x fastest, then y, then z).
 std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::size_t i, const std::array<int, 3>& reach)
 {
+    const std::array<int, 3> dims{specs.back().index[0] + 1, specs.back().index[1] + 1, specs.back().index[2] + 1};
+    const std::array<int, 3>& c = specs[i].index;
     std::vector<std::size_t> out;
-    for (std::size_t j = 0; j < specs.size(); ++j) {
-        if (j == i) continue;
-        bool near = true;
-        for (int a = 0; a < 3 && near; ++a) near = std::abs(specs[j].index[a] - specs[i].index[a]) <= reach[a];
-        if (near) out.push_back(j);
-    }
+    for (int z = std::max(0, c[2] - reach[2]); z <= std::min(dims[2] - 1, c[2] + reach[2]); ++z)
+        for (int y = std::max(0, c[1] - reach[1]); y <= std::min(dims[1] - 1, c[1] + reach[1]); ++y)
+            for (int x = std::max(0, c[0] - reach[0]); x <= std::min(dims[0] - 1, c[0] + reach[0]); ++x) {
+                const std::size_t j = (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
+                if (j != i) out.push_back(j);
+            }
     return out;
 }
 
