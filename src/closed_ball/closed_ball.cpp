@@ -116,8 +116,14 @@ ViolationReport ViolationFinder::find(FacetCache& cache, const CandidateFilter& 
     const auto& flagged = cache.flagged();
     if (self_check_) check_flagged(cache);
 
-    // Unbounded Voronoi edges of surface facets mean a hole in G; the driver repairs it.
-    for (const FacetKey& k : flagged.overflow) rep.candidates.push_back({Point(), PointKind::Grid, 0, k});
+    // Unbounded Voronoi edges of surface facets mean a hole in G; the driver repairs it around
+    // their surface vertices, those keep accepts (a block repairs its own).
+    for (const FacetKey& k : flagged.overflow) {
+        bool mine = !keep;
+        for (const auto& v : facet_vertices(cache.entry(k).facet))
+            mine = mine || (v->info().on_surface() && keep(v->point()));
+        if (mine) rep.candidates.push_back({Point(), PointKind::Grid, 0, k});
+    }
     if (!rep.candidates.empty()) {
         rep.kind = Violation::Unbounded;
         return rep;

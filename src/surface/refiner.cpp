@@ -101,7 +101,7 @@ void Refiner::log(const char* format, ...) const
 void Refiner::record_voxel_bound(Vertex_handle v, int cells, bool edge_point)
 {
     // A block measures its own points only: the collar's are a neighbour's, and points next to
-    // the box's faces see the clipped field's false ones.
+    // the box's faces lack the points beyond it.
     if (in_.keep && !in_.keep(v->point())) return;
     int& max_cells = edge_point ? st_.max_cells_e : st_.max_cells_n;
     const int bound = edge_point ? st_.bound_e : st_.bound_n;
