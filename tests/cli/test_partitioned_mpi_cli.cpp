@@ -3,6 +3,7 @@
 // verifies; without --blocks the run is refused; a process that fails ends the run everywhere
 // with one message naming the block, and nothing is written.
 #include "support/json.h"
+#include "support/skip.h"
 #include "support/test_files.h"
 
 #include <catch2/catch.hpp>
@@ -28,7 +29,7 @@ RunResult run_mpi(int np, const std::string& args, const std::string& scratch)
 TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verifies", "[cli][partition][mpi]")
 {
 #ifndef ISODEL_MPIRUN
-    WARN("skipped: isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
+    ISODEL_SKIP("isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
 #else
     TempDir tmp;
     const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
@@ -62,7 +63,7 @@ TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verif
 TEST_CASE("mpirun: refusals and a failing process end the run with one message and no file", "[cli][partition][mpi]")
 {
 #ifndef ISODEL_MPIRUN
-    WARN("skipped: isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
+    ISODEL_SKIP("isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
 #else
     TempDir tmp;
     const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
