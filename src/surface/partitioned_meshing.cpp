@@ -337,6 +337,16 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
             ps.exchange_rounds = exchange_points(blocks, specs, reach, ranks, shared, ps, inserted);
         }
         sum_block_stats(blocks, ranks, st);
+        // A block whose last pass stopped on violations of its own region whose points are
+        // vertices already cannot certify them: as in one run, the guarantee fails.
+        std::vector<double> stalled;
+        for (std::size_t i : ranks.mine(n))
+            if (blocks[i]->stalled()) stalled.push_back(double(i));
+        stalled = ranks.all_gather(stalled);
+        if (!stalled.empty())
+            throw GuaranteeViolated("partitioned meshing: block " + std::to_string(std::size_t(*std::min_element(
+                                        stalled.begin(), stalled.end()))) +
+                                    ": no progress (violations left whose candidates are all vertices already)");
         std::size_t refused = 0;
         if (!assemble_everywhere(blocks, ranks, shared, result.surface, refused)) {
             if (growth == kMaxCollarGrowths) {
