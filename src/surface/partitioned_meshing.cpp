@@ -14,9 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <string>
-#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -181,6 +179,8 @@ int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const s
                     std::vector<SeedPoint>& inserted)
 {
     const std::size_t n = blocks.size();
+    std::vector<std::vector<std::size_t>> near(n);
+    for (std::size_t j : ranks.mine(n)) near[j] = neighbours(specs, j, reach);
     for (int round = 1;; ++round) {
         const std::vector<std::vector<SeedPoint>> fresh = gather_new_points(blocks, ranks);
         for (const auto& list : fresh)
@@ -191,7 +191,7 @@ int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const s
         double sent = 0;
         for (std::size_t j : ranks.mine(n)) {
             if (blocks[j]->empty()) continue;
-            for (std::size_t i : neighbours(specs, j, reach))
+            for (std::size_t i : near[j])
                 for (const SeedPoint& s : fresh[i])
                     if (blocks[j]->reads(s.p)) inbox[j].push_back(s);
             sent += double(inbox[j].size());

@@ -364,6 +364,7 @@ bool Refiner::run(bool stop_without_progress)
 {
     auto& steps = st_.refinement_seconds;
     double t_topology = 0, t_refine = 0;
+    bool certified = true;
     InterruptScope scope(interrupter_, "closed_ball");
     for (;;) {
         const auto tr = Clock::now();
@@ -417,9 +418,8 @@ bool Refiner::run(bool stop_without_progress)
         // A block sees its neighbours' points only through the exchange: a violation next to
         // its seam may wait for them (partitioned_meshing.h).
         if (ins.inserted.empty() && stop_without_progress) {
-            st_.seconds["closed_ball"] = t_topology;
-            st_.seconds["refine"] = t_refine;
-            return false;
+            certified = false;
+            break;
         }
         if (ins.inserted.empty() && rep.kind == Violation::FacetAngle) {
             st_.facet_angle_stop = FacetAngleStop::NoProgress; // its candidates are vertices already
@@ -435,7 +435,7 @@ bool Refiner::run(bool stop_without_progress)
     }
     st_.seconds["closed_ball"] = t_topology;
     st_.seconds["refine"] = t_refine;
-    return true;
+    return certified;
 }
 
 } // namespace isodel::mesher
