@@ -51,58 +51,71 @@ bool within_budget(double delta, double g, double edge, double budget_world, dou
 }
 
 // Condition for a parent P to replace its children during construction: P's own trilinear
-// interpolant (from its corner samples) passes the certificate's tests on P's span, or the span
-// lies off Sigma (every node of one strict sign, so P's interpolant is of that sign too). The
-// hanging nodes and the one-cell rim are left to the repair rounds, which check the continuous
-// interpolant itself.
+// interpolant (from its corner samples) passes the certificate's tests on P's span and on the
+// one-cell rim around it, or the span lies off Sigma (every node of one strict sign, so P's
+// interpolant is of that sign too). The rim is there because certify_cell reads the 3x3x3 block
+// around each cell, which reaches one cell past P: its fine edges enter the monotone axis and g
+// (the rim's coarse values are not known yet and are taken as the input's). delta is measured
+// on band cells only, as in certify_cell: off the band a narrow-band input is clamped, and its
+// difference from the coarse interpolant there says nothing about Sigma. Hanging nodes and
+// the neighbours' own coarsening are left to the repair rounds, which check the continuous
+// interpolant itself, so this test decides how much is proposed, never what is trusted.
 bool parent_certified(const SampleField::Reader& f, const SampleField::Reader& corners, const CellId& p,
                       const std::array<double, 3>& edges, double budget_world)
 {
-    const int s = p.size(), n = s + 1;
+    const int s = p.size();
+    bool pos = false, neg = false;
+    for (int k = 0; k <= s && !(pos && neg); ++k)
+        for (int j = 0; j <= s; ++j)
+            for (int i = 0; i <= s; ++i) (f.phi(p.origin.offsetBy(i, j, k)) > 0 ? pos : neg) = true;
+    if (!(pos && neg)) return true;
+
+    // Nodes -1 .. s + 1 per axis: P's span and its rim.
+    const int n = s + 3;
     const std::size_t nodes = std::size_t(n) * n * n;
     std::vector<double> fine(nodes), coarse(nodes);
-    auto idx = [&](int i, int j, int k) { return (std::size_t(k) * n + j) * n + i; };
-    bool pos = false, neg = false;
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const double v = f.phi(p.origin.offsetBy(i, j, k));
-                fine[idx(i, j, k)] = v;
-                (v > 0 ? pos : neg) = true;
-            }
-    if (!(pos && neg)) return true;
+    auto idx = [&](int i, int j, int k) { return (std::size_t(k + 1) * n + (j + 1)) * n + (i + 1); };
     double c[8];
     for (int m = 0; m < 8; ++m) c[m] = corners.phi(p.origin.offsetBy((m & 1) * s, ((m >> 1) & 1) * s, ((m >> 2) & 1) * s));
     const auto& tri = trilinear();
     const double inv = 1.0 / s;
-    double delta = 0;
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
+    auto inside = [s](int i) { return i >= 0 && i <= s; };
+    for (int k = -1; k <= s + 1; ++k)
+        for (int j = -1; j <= s + 1; ++j)
+            for (int i = -1; i <= s + 1; ++i) {
                 const std::size_t q = idx(i, j, k);
-                coarse[q] = tri.eval(c, Vec3d(i * inv, j * inv, k * inv));
-                delta = std::max(delta, std::abs(coarse[q] - fine[q]));
+                fine[q] = f.phi(p.origin.offsetBy(i, j, k));
+                coarse[q] = inside(i) && inside(j) && inside(k) ? tri.eval(c, Vec3d(i * inv, j * inv, k * inv)) : fine[q];
             }
-    // The unit sub-cells either level set can meet (fine and coarse corners of both signs).
-    std::vector<char> band(std::size_t(s) * s * s);
-    for (int k = 0; k < s; ++k)
-        for (int j = 0; j < s; ++j)
-            for (int i = 0; i < s; ++i) {
+    // The unit cells either level set can meet (fine and coarse corners of both signs), delta
+    // over the corners of P's own band cells.
+    const int cells = s + 2;
+    std::vector<char> band(std::size_t(cells) * cells * cells);
+    auto cell = [cells](int i, int j, int k) { return (std::size_t(k + 1) * cells + (j + 1)) * cells + (i + 1); };
+    double delta = 0;
+    for (int k = -1; k <= s; ++k)
+        for (int j = -1; j <= s; ++j)
+            for (int i = -1; i <= s; ++i) {
                 bool p2 = false, n2 = false;
                 for (int m = 0; m < 8; ++m) {
                     const std::size_t q = idx(i + (m & 1), j + ((m >> 1) & 1), k + ((m >> 2) & 1));
                     for (double v : {fine[q], coarse[q]}) (v > 0 ? p2 : n2) = true;
                 }
-                band[(std::size_t(k) * s + j) * s + i] = p2 && n2;
+                band[cell(i, j, k)] = p2 && n2;
+                if (!(p2 && n2) || i < 0 || j < 0 || k < 0 || i == s || j == s || k == s) continue;
+                for (int m = 0; m < 8; ++m) {
+                    const std::size_t q = idx(i + (m & 1), j + ((m >> 1) & 1), k + ((m >> 2) & 1));
+                    delta = std::max(delta, std::abs(coarse[q] - fine[q]));
+                }
             }
     for (int d = 0; d < 3; ++d) {
         Monotone mono;
         for (int m = 0; m < 8; ++m) // the four coarse d-edges, per unit length
             if (!(m & (1 << d))) mono.add((c[m | (1 << d)] - c[m]) * inv);
-        for (int k = 0; k < s && mono.ok; ++k)
-            for (int j = 0; j < s && mono.ok; ++j)
-                for (int i = 0; i < s && mono.ok; ++i) {
-                    if (!band[(std::size_t(k) * s + j) * s + i]) continue;
+        for (int k = -1; k <= s && mono.ok; ++k)
+            for (int j = -1; j <= s && mono.ok; ++j)
+                for (int i = -1; i <= s && mono.ok; ++i) {
+                    if (!band[cell(i, j, k)]) continue;
                     for (int m = 0; m < 8; ++m) {
                         if (m & (1 << d)) continue;
                         const int x = i + (m & 1), y = j + ((m >> 1) & 1), z = k + ((m >> 2) & 1);

@@ -4,11 +4,14 @@
 // volumeToMesh on the same grid in the same run. Each measurement runs in its own forked child
 // (its peak memory is its own), the methods interleaved within each repetition.
 //
-//   sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big]
+//   sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big] [--huge] [--adaptive]
 // Scenes: two spheres of radius 20 voxels 50 voxels apart on every axis ("near pair") and 1500
 // apart ("far pair"); with --big, about 2.4 10^6 active voxels as many spheres and tori
 // scattered through a 3000^3 box ("scattered") and the same shapes packed into a compact box
-// ("packed").
+// ("packed"); with --huge, about 2 10^7 active voxels as larger spheres and tori (radii 80-200
+// voxels) scattered through a 4000^3 box ("huge"), meshed with MeshOptions::adaptive only (a
+// uniform run of it needs more memory than a 24 GiB machine has). --adaptive meshes every scene
+// with MeshOptions::adaptive; the "grid" column is the certified octree's construction.
 #include <isodel/mesh.h>
 
 #include <openvdb/openvdb.h>
@@ -77,16 +80,16 @@ Grid::Ptr pair(double distance)
     return union_of({sphere(openvdb::Vec3d(0.0), 20), sphere(openvdb::Vec3d(distance), 20)});
 }
 
-/// Spheres and tori of radii 8-40 voxels at random places of a box of \p side voxels (or, with
-/// \p packed, on a lattice with 100-voxel spacing), until about \p target active voxels.
-Grid::Ptr scattered(double side, bool packed, std::size_t target)
+/// Spheres and tori of radii \p r0 to \p r1 voxels at random places of a box of \p side voxels
+/// (or, with \p packed, on a lattice with 100-voxel spacing), until about \p target active voxels.
+Grid::Ptr scattered(double side, bool packed, std::size_t target, double r0 = 8, double r1 = 40)
 {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     std::vector<Grid::Ptr> parts;
     std::size_t active = 0;
     for (int i = 0; active < target; ++i) {
-        const double r = 8 + 32 * U(rng);
+        const double r = r0 + (r1 - r0) * U(rng);
         openvdb::Vec3d c(side * U(rng), side * U(rng), side * U(rng));
         if (packed) c = openvdb::Vec3d(100.0 * (i % 8), 100.0 * ((i / 8) % 8), 100.0 * (i / 64));
         Grid::Ptr g = i % 3 == 2 ? torus(c, r, 0.3 * r) : sphere(c, r);
@@ -98,7 +101,7 @@ Grid::Ptr scattered(double side, bool packed, std::size_t target)
 
 /// One measurement, as the child hands it back.
 struct Sample {
-    double total = 0, points = 0, delaunay = 0, closed_ball = 0, refine = 0, extract = 0;
+    double total = 0, grid = 0, points = 0, delaunay = 0, closed_ball = 0, refine = 0, extract = 0;
     double peak_mib = 0;
     long long vertices = 0;
     int ok = 0;
@@ -146,30 +149,38 @@ int main(int argc, char** argv)
     openvdb::initialize();
     int reps = 3, threads = 2;
     double eps_voxels = 0.5;
-    bool big = false;
+    bool big = false, huge = false, adaptive = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--reps" && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
         else if (a == "--eps-voxels" && i + 1 < argc) eps_voxels = std::atof(argv[++i]);
         else if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
         else if (a == "--big") big = true;
+        else if (a == "--huge") huge = true;
+        else if (a == "--adaptive") adaptive = true;
         else {
-            std::fprintf(stderr, "usage: sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big]\n");
+            std::fprintf(stderr, "usage: sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big] [--huge] [--adaptive]\n");
             return 2;
         }
     }
     struct Scene {
         const char* name;
         std::function<Grid::Ptr()> make;
+        bool adaptive_only = false;
     };
     std::vector<Scene> scenes = {{"near pair", [] { return pair(50); }}, {"far pair", [] { return pair(1500); }}};
     if (big) {
         scenes.push_back({"scattered", [] { return scattered(3000, false, 2400000); }});
         scenes.push_back({"packed", [] { return scattered(0, true, 2400000); }});
     }
-    std::printf("sparse_bench: eps %.3g voxel, %d threads, medians of %d; seconds\n", eps_voxels, threads, reps);
-    std::printf("%-10s %10s %16s %7s %7s %7s %7s %7s %7s %8s %9s %8s %8s\n", "scene", "active", "bbox", "total",
-                "points", "dt", "cball", "refine", "extract", "peakMiB", "vertices", "vdb s", "vdbMiB");
+    if (huge) {
+        scenes = {};
+        scenes.push_back({"huge", [] { return scattered(4000, false, 20000000, 80, 200); }, true});
+    }
+    std::printf("sparse_bench: eps %.3g voxel, %d threads, medians of %d, %s; seconds\n", eps_voxels, threads, reps,
+                adaptive || huge ? "MeshOptions::adaptive" : "uniform");
+    std::printf("%-10s %10s %16s %7s %7s %7s %7s %7s %7s %7s %8s %9s %8s %8s\n", "scene", "active", "bbox", "total",
+                "grid", "points", "dt", "cball", "refine", "extract", "peakMiB", "vertices", "vdb s", "vdbMiB");
     for (const Scene& scene : scenes) {
         const Grid::Ptr grid = scene.make();
         const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
@@ -181,11 +192,13 @@ int main(int argc, char** argv)
                 mo.inside = isodel::Inside::Below;
                 mo.eps_voxels = eps_voxels;
                 mo.threads = threads;
+                mo.adaptive = adaptive || scene.adaptive_only;
                 const auto t0 = std::chrono::steady_clock::now();
                 const isodel::MeshResult m = isodel::mesh_isosurface(*grid, mo);
                 s.total = seconds_since(t0);
                 const auto& sec = m.stats.seconds;
                 const auto at = [&](const char* k) { return sec.count(k) ? sec.at(k) : 0.0; };
+                s.grid = at("adaptive_grid");
                 s.points = at("points");
                 s.delaunay = at("delaunay");
                 s.closed_ball = at("closed_ball");
@@ -215,9 +228,9 @@ int main(int argc, char** argv)
         const openvdb::Coord d = box.dim();
         char dims[32];
         std::snprintf(dims, sizeof dims, "%dx%dx%d", d.x(), d.y(), d.z());
-        std::printf("%-10s %10llu %16s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %8.1f %9lld %8.3f %8.1f\n", scene.name,
+        std::printf("%-10s %10llu %16s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %8.1f %9lld %8.3f %8.1f\n", scene.name,
                     (unsigned long long)grid->activeVoxelCount(), dims, med(&Sample::total, runs),
-                    med(&Sample::points, runs), med(&Sample::delaunay, runs), med(&Sample::closed_ball, runs),
+                    med(&Sample::grid, runs), med(&Sample::points, runs), med(&Sample::delaunay, runs), med(&Sample::closed_ball, runs),
                     med(&Sample::refine, runs), med(&Sample::extract, runs), med(&Sample::peak_mib, runs),
                     runs.front().vertices, med(&Sample::total, vdb), med(&Sample::peak_mib, vdb));
     }
