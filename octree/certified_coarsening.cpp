@@ -192,6 +192,18 @@ void leaves_around(const AdaptiveGrid::Reader& r, const Coord& u, std::vector<Ce
                 if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) out.push_back(*leaf);
 }
 
+// The coarse leaves whose closed spans hold a corner of \p u (they cover the unit cells
+// u - 1 .. u + 1): the leaves a's values at u's corners come from, hanging nodes included, so
+// splitting them lowers delta of (b). A changed cell has a corner inside some coarse leaf's span,
+// so this is never empty for one.
+void leaves_at_corners(const AdaptiveGrid::Reader& r, const Coord& u, std::vector<CellId>& out)
+{
+    for (int z = -1; z <= 1; ++z)
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x)
+                if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) out.push_back(*leaf);
+}
+
 } // namespace
 
 std::array<double, 3> voxel_edges(const SampleField& field)
@@ -369,7 +381,11 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
         std::size_t reasons[4] = {0, 0, 0, 0};
         for (std::size_t i = 0; i < cells.size(); ++i) {
             ++reasons[int(failed[i])];
-            if (failed[i] != CertificateFailure::None) leaves_around(r, cells[i], split);
+            // Over budget: delta at u's corners is too large for the gradient, and the leaves
+            // those corners read are the ones to refine. Otherwise (no monotone axis, a coarse
+            // sample at v*) every leaf the block reads.
+            if (failed[i] == CertificateFailure::OverBudget) leaves_at_corners(r, cells[i], split);
+            else if (failed[i] != CertificateFailure::None) leaves_around(r, cells[i], split);
         }
         if (intr) {
             const std::string line = "adaptive grid: round " + std::to_string(out.rounds) + ": " +
