@@ -6,7 +6,9 @@
 /// supplies an MPI implementation (tools/isodel/mpi_transport.h) when it is built with MPI and
 /// started by mpirun.
 ///
-/// Process r of P meshes the blocks r, r + P, r + 2P, ... of the n blocks in block order; the rounds of point exchange are collective, so every process must call
+/// The blocks are dealt to the P processes by their estimated work (the grid-edge crossings in
+/// each block's box, largest first to the least loaded process; every process computes the same
+/// deal from the same volume); the rounds of point exchange are collective, so every process must call
 /// mesh_isosurface with the same volume and options. The mesh is the same for every P and for
 /// the thread engine (transport = nullptr); process 0 returns it, the others an empty surface.
 

@@ -6,6 +6,7 @@
 #include <isodel/block_transport.h>
 #include <isodel/errors.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <exception>
 #include <numeric>
@@ -20,12 +21,35 @@ public:
     int rank() const { return t_ ? t_->rank() : 0; }
     int size() const { return t_ ? t_->size() : 1; }
     bool first() const { return rank() == 0; }
-    /// This process's blocks of \p n, in block order: every size()-th from rank(). Dealt round
-    /// robin, since blocks in block order are layers of the volume, and the surface's share of a
-    /// layer varies: contiguous runs would give one process the dense layers.
+    /// Deals the blocks to the processes by their estimated \p work (the same numbers on every
+    /// process): the largest first, each to the process with the least work so far (the longest
+    /// processing time rule, within 4/3 of the best split), ties to the lower block and the lower
+    /// rank, so that every process computes the same deal. Until deal is called, and with one
+    /// process, blocks are dealt round robin. Which process meshes a block never changes the
+    /// mesh: everything exchanged is put back in block order.
+    void deal(const std::vector<double>& work)
+    {
+        owner_.assign(work.size(), 0);
+        if (size() == 1) return;
+        std::vector<std::size_t> order(work.size());
+        std::iota(order.begin(), order.end(), std::size_t(0));
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return work[a] > work[b]; });
+        std::vector<double> load(std::size_t(size()), 0.0);
+        for (std::size_t i : order) {
+            const std::size_t r = std::size_t(std::min_element(load.begin(), load.end()) - load.begin());
+            owner_[i] = int(r);
+            load[r] += work[i];
+        }
+    }
+    /// This process's blocks of \p n, in block order.
     std::vector<std::size_t> mine(std::size_t n) const
     {
         std::vector<std::size_t> out;
+        if (owner_.size() == n) {
+            for (std::size_t i = 0; i < n; ++i)
+                if (owner_[i] == rank()) out.push_back(i);
+            return out;
+        }
         for (std::size_t i = std::size_t(rank()); i < n; i += std::size_t(size())) out.push_back(i);
         return out;
     }
@@ -85,6 +109,8 @@ public:
 
 private:
     BlockTransport* t_;
+    std::vector<int> owner_; ///< per block, after deal
+
 };
 
 } // namespace isodel::mesher

@@ -1,6 +1,7 @@
 #include "surface/partitioned_meshing.h"
 #include "surface/thread_limit.h"
 
+#include "octree/edge_crossings.h"
 #include "octree/protective_layer.h"
 #include "surface/block_ranks.h"
 #include "surface/surface_extraction.h"
@@ -157,6 +158,35 @@ std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::si
     return out;
 }
 
+/// Each block's share of the work, the same on every process: the grid-edge crossings in its box
+/// (E, and with it G and N, grow with them; the Delaunay triangulation and the checks follow the
+/// points), plus one for a block's own set-up. Only for dealing blocks to processes.
+std::vector<double> block_work(const octree::SampleField& field, const std::vector<BlockSpec>& specs)
+{
+    std::vector<double> work(specs.size(), 1.0);
+    const std::array<int, 3> dims{specs.back().index[0] + 1, specs.back().index[1] + 1, specs.back().index[2] + 1};
+    const openvdb::Coord lo0 = specs.front().core.min();
+    const openvdb::Coord step = specs.front().core.dim();
+    const openvdb::Coord reach = specs.front().core.min() - specs.front().box.min();
+    for (const octree::EdgePoint& e : octree::edge_crossings(field).points) {
+        // The blocks whose box may hold e.lower, one block beyond either way for the clipped
+        // boxes at the domain's faces; the box test decides.
+        int from[3], to[3];
+        for (int a = 0; a < 3; ++a) {
+            const int x = e.lower[a] - lo0[a];
+            from[a] = std::max(0, (x - reach[a] - step[a]) / step[a] - 1);
+            to[a] = std::min(dims[a] - 1, (x + reach[a]) / step[a] + 1);
+        }
+        for (int z = from[2]; z <= to[2]; ++z)
+            for (int y = from[1]; y <= to[1]; ++y)
+                for (int x = from[0]; x <= to[0]; ++x) {
+                    const std::size_t j = (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
+                    if (specs[j].box.isInside(e.lower)) work[j] += 1;
+                }
+    }
+    return work;
+}
+
 /// Every block's new points, from every process: (block, x, y, z, kind) per point, in block order.
 std::vector<std::vector<SeedPoint>> gather_new_points(Blocks& blocks, const BlockRanks& ranks)
 {
@@ -305,7 +335,7 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
     const auto t0 = Clock::now();
     check_mesh_options(options);
     const ThreadLimit threads(options.threads);
-    const BlockRanks ranks(options.transport);
+    BlockRanks ranks(options.transport);
     const std::array<int, 3> r = octree::layer_radius(field);
     // The block's points differ from the global ones only within r + 2 voxels of its box's inner
     // faces (docs/partitioned.md, Lemma 1): its trusted box lies inside that margin.
@@ -319,6 +349,7 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
     for (int growth = 0;; ++growth) {
         const std::vector<BlockSpec> specs = partition_domain(field, options.block_voxels, collar);
         const std::size_t n = specs.size();
+        if (ranks.size() > 1) ranks.deal(block_work(field, specs));
         std::array<int, 3> reach{};
         for (int a = 0; a < 3; ++a) reach[a] = (collar[a] + options.block_voxels) / options.block_voxels;
         Blocks blocks(n);
