@@ -19,6 +19,7 @@
 // of V's boundary crossing it (1 when it lies wholly inside the triangle or V contains it).
 #include "octree/sample_field.h"
 
+#include <cmath>
 #include <vector>
 
 namespace isodel::mesher {
@@ -46,6 +47,20 @@ struct VoronoiCellPlanes {
             double m = -c[i];
             for (int k = 0; k < 3; ++k) m += n[i][k] * (n[i][k] > 0 ? lo[k] : hi[k]);
             if (m > 0) return true;
+        }
+        return false;
+    }
+    /// The box [lo, hi] lies beyond one plane by more than the rounding of this test can move,
+    /// so that misses_box holds of every box inside it as well, however it is rounded.
+    bool misses_box_surely(const openvdb::Vec3d& lo, const openvdb::Vec3d& hi) const
+    {
+        for (std::size_t i = 0; i < n.size(); ++i) {
+            double m = -c[i], scale = std::abs(c[i]);
+            for (int k = 0; k < 3; ++k) {
+                m += n[i][k] * (n[i][k] > 0 ? lo[k] : hi[k]);
+                scale += std::abs(n[i][k]) * (std::abs(lo[k]) + std::abs(hi[k]));
+            }
+            if (m > 1e-12 * scale) return true;
         }
         return false;
     }

@@ -65,8 +65,18 @@ public:
         best_d2_ = 0;
         best_.reset();
         normals_.clear();
+        const octree::FaceSlabs& slabs = field_.face_slabs();
         octree::for_each_cell_part(lo, hi, [&](const Coord& c, const Vec3d& a, const Vec3d& b) {
             if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) return;
+            // A part of the bounding box beyond one of Vor(p)'s planes: box() would count each
+            // of its boxes and settle it at once (F' of one sign, the direction's sign, or
+            // outside Vor(p)), so only the count is kept and F' is never read there.
+            if (cell_.misses_box_surely(c.asVec3d() + a, c.asVec3d() + b)) {
+                octree::for_each_piece(slabs, a, b, [&](int, int, int, const Vec3d& pa, const Vec3d& pb) {
+                    if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2] && ++boxes_ > kMaxBoxes) settled_ = false;
+                });
+                return;
+            }
             // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
             double corner[8];
             const octree::CellFunction cf = octree::cell_function(reader_, c, corner);
