@@ -152,7 +152,7 @@ void scan_block(const SampleField::Reader& reader, const Coord& b, const CoordBB
                     const double t = p0 / (p0 - p1);
                     Vec3d pos(x, y, z);
                     pos[axis] += t;
-                    out.push_back({pos, s, axis});
+                    out.push_back({pos, s, axis, t});
                 }
             }
 }

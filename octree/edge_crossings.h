@@ -14,9 +14,10 @@
 namespace isodel::octree {
 
 struct EdgePoint {
-    Vec3d index_pos; ///< position in index space
+    Vec3d index_pos; ///< position in index space (lower + t e_axis, rounded)
     Coord lower;     ///< lower endpoint of the grid edge
     int axis;        ///< 0,1,2: the edge runs from lower to lower + e_axis
+    double t;        ///< the crossing's offset along the edge, 0 < t < 1 (the same wherever the edge is)
 };
 
 struct EdgeCrossings {

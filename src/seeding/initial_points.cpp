@@ -1,5 +1,6 @@
 #include "seeding/initial_points.h"
 
+#include "geometry/point_lattice.h"
 #include "seeding/adaptive_points.h"
 #include "seeding/snap_edge_points.h"
 #include "seeding/thin_tubes.h"
@@ -15,6 +16,26 @@ namespace isodel::mesher {
 namespace {
 
 Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
+
+/// A grid-edge crossing in mesh index space, on the point lattice (geometry/point_lattice.h):
+/// lower + its offset along the edge, the face slabs' preimage of t (FaceSlabs::from_sample),
+/// rounded to the lattice and kept inside the edge's core, so that the point lies where the
+/// crossing does wherever the edge is.
+openvdb::Vec3d edge_point_on_lattice(const octree::EdgePoint& e, const octree::FaceSlabs& slabs)
+{
+    const double step = 1.0 / kLatticePerVoxel;
+    const double lo = std::ceil(slabs.h * kLatticePerVoxel) * step, hi = 1.0 - lo;
+    const double u = slabs.h == 0 ? e.t : slabs.h + e.t * (1 - 2 * slabs.h);
+    openvdb::Vec3d m = e.lower.asVec3d();
+    m[e.axis] += std::clamp(on_lattice(u, step), lo > 0 ? lo : step, lo > 0 ? hi : 1.0 - step);
+    return m;
+}
+
+/// A constructed seed on the point lattice.
+Point lattice_point(const openvdb::Vec3d& w, double step)
+{
+    return {on_lattice(w[0], step), on_lattice(w[1], step), on_lattice(w[2], step)};
+}
 
 } // namespace
 
@@ -81,13 +102,15 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
             ++st.snapped;
             continue;
         }
-        out.points.push_back({to_point(field.index_to_world(slabs.from_sample(e.points[i].index_pos))), {id++, PointKind::Edge}});
+        out.points.push_back({to_point(field.index_to_world(edge_point_on_lattice(e.points[i], slabs))), {id++, PointKind::Edge}});
     }
     auto tubes = thin_tube_points(field, out.crossed_cells);
     const auto necks = tunnel_shoulder_points(field, out.crossed_cells);
     tubes.insert(tubes.end(), necks.begin(), necks.end());
     st.n_topology += tubes.size();
-    for (const auto& p : tubes) out.points.push_back({to_point(field.index_to_world(slabs.from_sample(p))), {id++, PointKind::Topology}});
+    const double step = lattice_step(field.min_voxel_edge());
+    for (const auto& p : tubes)
+        out.points.push_back({lattice_point(field.index_to_world(slabs.from_sample(p)), step), {id++, PointKind::Topology}});
     for (const SeedPoint& s : seeds) {
         ++(s.kind == PointKind::Geometry ? st.n_geometry : st.n_topology);
         out.points.push_back({Point(s.p[0], s.p[1], s.p[2]), {id++, s.kind}});

@@ -1,6 +1,8 @@
 #include "surface/stage_clock.h"
 #include "surface/refiner.h"
 
+#include "geometry/point_lattice.h"
+
 #include "closed_ball/grid_cell_check.h"
 #include "closed_ball/voronoi_cell_disks.h"
 #include "closed_ball/voxel_bound.h"
@@ -63,7 +65,7 @@ Refiner::Refiner(Delaunay& dt, const RefinerInput& in, std::vector<openvdb::Coor
       max_angle_points_(2 * stats.e_points + 10000),
       // Segment walks count unit cells: a leaf of level l spans 2^l of them per axis.
       max_cells_walk_((4 * (in.adaptive ? 27 : stats.bound_n) + 16) << (in.adaptive ? in.adaptive->max_level() : 0)),
-      hash_cell_(0.25 * in.field->min_voxel_edge()),
+      hash_cell_(0.25 * in.field->min_voxel_edge()), lattice_step_(lattice_step(in.field->min_voxel_edge())),
       hausdorff_(*in.field, in.eps, near_cells(*in.field, std::move(crossed_cells), in.near),
                  options.snap ? in.snap_radius : 0.0)
 {
@@ -160,7 +162,12 @@ InsertionResult Refiner::insert_batch(const std::vector<Candidate>& candidates, 
     InsertionResult ins;
     {
         StepTimer timer{steps["insertion"]};
-        ins = insert_candidates(dt_, cache_, candidates, next_id_, hash_cell_);
+        // Every candidate on the point lattice (geometry/point_lattice.h) before it is placed.
+        std::vector<Candidate> placed = candidates;
+        for (Candidate& c : placed)
+            c.p = Point(on_lattice(c.p.x(), lattice_step_), on_lattice(c.p.y(), lattice_step_),
+                        on_lattice(c.p.z(), lattice_step_));
+        ins = insert_candidates(dt_, cache_, std::move(placed), next_id_, hash_cell_);
     }
     std::vector<int> counts;
     {

@@ -112,6 +112,7 @@ private:
     std::size_t max_angle_points_;
     int max_cells_walk_;
     double hash_cell_;
+    double lattice_step_; ///< world step of the point lattice every candidate is rounded to
     FacetCache cache_;
     HausdorffRefinement hausdorff_;
     FacetLoopScanner loops_;

@@ -2,13 +2,12 @@
 // and the tiles' faces, never the bounding box (octree/edge_crossings.h), and the result is the
 // mesh of the same F. Pinned down here, end to end through mesh_isosurface and the verifier:
 //  - two narrow-band spheres 1536 voxels apart mesh as the same two spheres 128 voxels apart,
-//    translated: the same vertices, vertex for vertex up to the translation, and as many
-//    triangles. The points' ids, which order every later decision, follow OpenVDB's tree order
-//    for G, so the second sphere moves by whole 128^3 internal nodes: the order within each
-//    sphere, and so each choice between symmetric candidates, is then the same. (The triangles
-//    themselves may differ where four vertices are nearly cospherical: the exact predicates
-//    see world coordinates rounded differently at the two places, lower + t in floating point,
-//    so a diagonal can flip; the test bounds those at 1% of the triangles.)
+//    translated: the same vertices, bit for bit up to the translation, and the same triangles.
+//    The points' ids, which order every later decision, follow OpenVDB's tree order for G, so
+//    the second sphere moves by whole 128^3 internal nodes: the order within each sphere, and
+//    so each choice between symmetric candidates, is then the same. The points lie on a dyadic
+//    lattice (geometry/point_lattice.h), so the translation is exact and the exact predicates
+//    decide the same way at both places, nearly cospherical vertices included.
 //  - a fog volume whose core is a tile, with Sigma between the tile and the voxels around it;
 //  - data whose inside reaches the faces of its active box (Sigma closed along the box);
 //  - the same mesh at 1 and 2 threads.
@@ -52,27 +51,28 @@ MeshOptions options(double iso, Inside inside, int threads = 0)
     return mo;
 }
 
-/// The vertices of \p m with those beyond \p split (on x) moved back by \p shift, rounded to
-/// 1e-6 voxel, and the triangles as triples of those keys, both sorted: the mesh up to the order
-/// of its vertices and up to the translation.
+/// The vertices of \p m with those beyond \p split (on x) moved back by \p shift (exactly: the
+/// coordinates are on the point lattice and the shift is whole voxels), and the triangles as
+/// triples of those keys, both sorted: the mesh up to the order of its vertices and up to the
+/// translation.
 struct Canonical {
-    std::vector<std::array<long long, 3>> vertices;
-    std::vector<std::array<std::array<long long, 3>, 3>> triangles;
+    std::vector<std::array<double, 3>> vertices;
+    std::vector<std::array<std::array<double, 3>, 3>> triangles;
 };
 
 Canonical canonical(const SurfaceMesh& m, double split, double shift)
 {
-    std::vector<std::array<long long, 3>> key(m.vertices.size());
+    std::vector<std::array<double, 3>> key(m.vertices.size());
     for (std::size_t i = 0; i < m.vertices.size(); ++i) {
         const auto& v = m.vertices[i];
         const double s = v[0] > split ? shift : 0.0;
-        for (int a = 0; a < 3; ++a) key[i][a] = std::llround((v[a] - s) * 1e6);
+        for (int a = 0; a < 3; ++a) key[i][a] = v[a] - s;
     }
     Canonical c;
     c.vertices = key;
     std::sort(c.vertices.begin(), c.vertices.end());
     for (const auto& t : m.triangles) {
-        std::array<std::array<long long, 3>, 3> k{{key[t[0]], key[t[1]], key[t[2]]}};
+        std::array<std::array<double, 3>, 3> k{{key[t[0]], key[t[1]], key[t[2]]}};
         std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end()); // keeps orientation
         c.triangles.push_back(k);
     }
@@ -94,14 +94,11 @@ TEST_CASE("sparse volumes: a far-apart pair meshes as the compact pair, translat
     const Canonical a = canonical(near.mesh.surface, 128.0, 128.0), b = canonical(far.mesh.surface, 800.0, 1536.0);
     CHECK(a.vertices == b.vertices);
     CHECK(a.triangles.size() == b.triangles.size());
-    std::vector<std::array<std::array<long long, 3>, 3>> only_a;
+    std::vector<std::array<std::array<double, 3>, 3>> only_a;
     std::set_difference(a.triangles.begin(), a.triangles.end(), b.triangles.begin(), b.triangles.end(),
                         std::back_inserter(only_a));
-    // Where four vertices are (nearly) cospherical the exact predicates decide on coordinates
-    // whose last bits differ: an E point is lower + t, rounded once at 64 and once at 1600.
-    // Measured: 18 of 4032 triangles; more than 1% would be a real difference.
     INFO("triangles differing: " << only_a.size() << " of " << a.triangles.size());
-    CHECK(only_a.size() * 100 <= a.triangles.size());
+    CHECK(only_a.empty());
 }
 
 TEST_CASE("sparse volumes: the same mesh at 1 and 2 threads", "[surface][sparse]")
