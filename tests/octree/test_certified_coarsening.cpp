@@ -30,6 +30,29 @@ openvdb::FloatGrid::Ptr dense_grid(int n, const std::function<double(double, dou
 
 SampleField field_of(const openvdb::FloatGrid::Ptr& g) { return SampleField(g, 0.0, Inside::Above); }
 
+struct Recheck {
+    std::size_t cells = 0, failed = 0; ///< changed cells, and those whose certificate fails
+    double worst = 0;                  ///< the largest certified distance among them
+};
+
+/// Every changed cell of \p cg (cells_to_certify) certified again, independently of the repair
+/// rounds, against \p fine at \p budget (unit voxels).
+Recheck recheck(const SampleField& fine, const CertifiedGrid& cg, double budget)
+{
+    SampleField coarse(cg.resampled, fine.isovalue(), fine.inside());
+    coarse.set_effective_isovalue(fine.effective_isovalue());
+    const auto cells = isodel::octree::cells_to_certify(cg.grid, fine, coarse);
+    const SampleField::Reader fr(fine), ar(coarse);
+    Recheck out;
+    out.cells = cells.size();
+    for (const Coord& u : cells) {
+        const auto c = isodel::octree::certify_cell(fr, ar, u, {1, 1, 1}, budget);
+        out.failed += !c.ok;
+        out.worst = std::max(out.worst, c.distance_world);
+    }
+    return out;
+}
+
 } // namespace
 
 TEST_CASE("certify_cell: a monotone pair passes with delta / g, each broken condition fails", "[octree][adaptive]")
@@ -94,21 +117,11 @@ TEST_CASE("certified_coarsening: a smooth sphere coarsens, every changed cell ne
 
     // Recheck independently of the repair loop: every node that differs, every cell around it
     // that Sigma_t can meet, certified within the measured distance.
-    SampleField coarse(cg.resampled, 0.0, Inside::Above);
-    coarse.set_effective_isovalue(fine.effective_isovalue());
-    const auto cells = isodel::octree::cells_to_certify(cg.grid, fine, coarse);
-    CHECK(cells.size() == cg.cells_certified);
-    CHECK(!cells.empty());
-    const SampleField::Reader fr(fine), ar(coarse);
-    double worst = 0;
-    std::size_t failed = 0;
-    for (const Coord& u : cells) {
-        const auto c = isodel::octree::certify_cell(fr, ar, u, {1, 1, 1}, budget.distance_world);
-        failed += !c.ok;
-        worst = std::max(worst, c.distance_world);
-    }
-    CHECK(failed == 0);
-    CHECK(worst == cg.distance_world);
+    const Recheck rc = recheck(fine, cg, budget.distance_world);
+    CHECK(rc.cells == cg.cells_certified);
+    CHECK(rc.cells > 0);
+    CHECK(rc.failed == 0);
+    CHECK(rc.worst == cg.distance_world);
 }
 
 TEST_CASE("certified_coarsening: without a surface to protect, the grid coarsens to its bound", "[octree][adaptive]")
@@ -163,18 +176,8 @@ TEST_CASE("certified_coarsening: a narrow-band level set coarsens at Sigma as fa
 
     // The repair rounds split only the leaves a failure reads; recheck, independently of them,
     // that every changed cell of the final grid is certified within the measured distance.
-    SampleField coarse_field(cg.resampled, 0.0, Inside::Below);
-    coarse_field.set_effective_isovalue(fine.effective_isovalue());
-    const auto cells = isodel::octree::cells_to_certify(cg.grid, fine, coarse_field);
-    REQUIRE(!cells.empty());
-    const SampleField::Reader ar(coarse_field);
-    std::size_t failed = 0;
-    double worst = 0;
-    for (const Coord& u : cells) {
-        const auto c = isodel::octree::certify_cell(f, ar, u, {1, 1, 1}, budget.distance_world);
-        failed += !c.ok;
-        worst = std::max(worst, c.distance_world);
-    }
-    CHECK(failed == 0);
-    CHECK(worst == cg.distance_world);
+    const Recheck rc = recheck(fine, cg, budget.distance_world);
+    REQUIRE(rc.cells > 0);
+    CHECK(rc.failed == 0);
+    CHECK(rc.worst == cg.distance_world);
 }
