@@ -182,25 +182,15 @@ double split_potential(const AdaptiveGrid& g)
     return total;
 }
 
-// The coarse leaves whose closed spans meet the block of \p u (nodes u - 1 .. u + 2): the
-// leaves its values come from, hanging-node constraints included.
-void leaves_around(const AdaptiveGrid::Reader& r, const Coord& u, std::vector<CellId>& out)
+// The coarse leaves covering the unit cells u - reach .. u + reach, the leaves whose values \p u's
+// certificate reads, hanging-node constraints included: reach 2 for its block (nodes u - 1 ..
+// u + 2), reach 1 for its corners only (the leaves whose refinement lowers delta of (b); a
+// changed cell has a corner inside some coarse leaf's span, so this is never empty for one).
+void coarse_leaves_near(const AdaptiveGrid::Reader& r, const Coord& u, int reach, std::vector<CellId>& out)
 {
-    for (int z = -2; z <= 2; ++z)
-        for (int y = -2; y <= 2; ++y)
-            for (int x = -2; x <= 2; ++x)
-                if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) out.push_back(*leaf);
-}
-
-// The coarse leaves whose closed spans hold a corner of \p u (they cover the unit cells
-// u - 1 .. u + 1): the leaves a's values at u's corners come from, hanging nodes included, so
-// splitting them lowers delta of (b). A changed cell has a corner inside some coarse leaf's span,
-// so this is never empty for one.
-void leaves_at_corners(const AdaptiveGrid::Reader& r, const Coord& u, std::vector<CellId>& out)
-{
-    for (int z = -1; z <= 1; ++z)
-        for (int y = -1; y <= 1; ++y)
-            for (int x = -1; x <= 1; ++x)
+    for (int z = -reach; z <= reach; ++z)
+        for (int y = -reach; y <= reach; ++y)
+            for (int x = -reach; x <= reach; ++x)
                 if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) out.push_back(*leaf);
 }
 
@@ -384,8 +374,8 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
             // Over budget: delta at u's corners is too large for the gradient, and the leaves
             // those corners read are the ones to refine. Otherwise (no monotone axis, a coarse
             // sample at v*) every leaf the block reads.
-            if (failed[i] == CertificateFailure::OverBudget) leaves_at_corners(r, cells[i], split);
-            else if (failed[i] != CertificateFailure::None) leaves_around(r, cells[i], split);
+            if (failed[i] != CertificateFailure::None)
+                coarse_leaves_near(r, cells[i], failed[i] == CertificateFailure::OverBudget ? 1 : 2, split);
         }
         if (intr) {
             const std::string line = "adaptive grid: round " + std::to_string(out.rounds) + ": " +

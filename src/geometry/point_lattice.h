@@ -33,4 +33,12 @@ inline double lattice_step(double min_voxel_edge)
 /// power-of-two step, and the identity where doubles are coarser than the step.
 inline double on_lattice(double x, double step) { return std::nearbyint(x / step) * step; }
 
+/// A point (x(), y(), z() and a constructor from three coordinates, as CGAL's) rounded to the
+/// lattice coordinate by coordinate.
+template <class Point>
+Point on_lattice(const Point& p, double step)
+{
+    return Point(on_lattice(p.x(), step), on_lattice(p.y(), step), on_lattice(p.z(), step));
+}
+
 } // namespace isodel::mesher

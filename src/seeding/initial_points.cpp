@@ -24,17 +24,11 @@ Point to_point(const openvdb::Vec3d& p) { return {p[0], p[1], p[2]}; }
 openvdb::Vec3d edge_point_on_lattice(const octree::EdgePoint& e, const octree::FaceSlabs& slabs)
 {
     const double step = 1.0 / kLatticePerVoxel;
-    const double lo = std::ceil(slabs.h * kLatticePerVoxel) * step, hi = 1.0 - lo;
+    const double lo = std::max(step, std::ceil(slabs.h * kLatticePerVoxel) * step);
     const double u = slabs.h == 0 ? e.t : slabs.h + e.t * (1 - 2 * slabs.h);
     openvdb::Vec3d m = e.lower.asVec3d();
-    m[e.axis] += std::clamp(on_lattice(u, step), lo > 0 ? lo : step, lo > 0 ? hi : 1.0 - step);
+    m[e.axis] += std::clamp(on_lattice(u, step), lo, 1.0 - lo);
     return m;
-}
-
-/// A constructed seed on the point lattice.
-Point lattice_point(const openvdb::Vec3d& w, double step)
-{
-    return {on_lattice(w[0], step), on_lattice(w[1], step), on_lattice(w[2], step)};
 }
 
 } // namespace
@@ -110,7 +104,7 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
     st.n_topology += tubes.size();
     const double step = lattice_step(field.min_voxel_edge());
     for (const auto& p : tubes)
-        out.points.push_back({lattice_point(field.index_to_world(slabs.from_sample(p)), step), {id++, PointKind::Topology}});
+        out.points.push_back({on_lattice(to_point(field.index_to_world(slabs.from_sample(p))), step), {id++, PointKind::Topology}});
     for (const SeedPoint& s : seeds) {
         ++(s.kind == PointKind::Geometry ? st.n_geometry : st.n_topology);
         out.points.push_back({Point(s.p[0], s.p[1], s.p[2]), {id++, s.kind}});

@@ -164,9 +164,7 @@ InsertionResult Refiner::insert_batch(const std::vector<Candidate>& candidates, 
         StepTimer timer{steps["insertion"]};
         // Every candidate on the point lattice (geometry/point_lattice.h) before it is placed.
         std::vector<Candidate> placed = candidates;
-        for (Candidate& c : placed)
-            c.p = Point(on_lattice(c.p.x(), lattice_step_), on_lattice(c.p.y(), lattice_step_),
-                        on_lattice(c.p.z(), lattice_step_));
+        for (Candidate& c : placed) c.p = on_lattice(c.p, lattice_step_);
         ins = insert_candidates(dt_, cache_, std::move(placed), next_id_, hash_cell_);
     }
     std::vector<int> counts;
