@@ -8,8 +8,8 @@
 ///
 /// The blocks are dealt to the P processes by their estimated work (the grid-edge crossings in
 /// each block's box, largest first to the least loaded process; every process computes the same
-/// deal from the same volume); the rounds of point exchange are collective, so every process must call
-/// mesh_isosurface with the same volume and options. The mesh is the same for every P and for
+/// deal from the same volume). The rounds of point exchange are collective, so every process must
+/// call mesh_isosurface with the same volume and options. The mesh is the same for every P and for
 /// the thread engine (transport = nullptr); process 0 returns it, the others an empty surface.
 
 #include <vector>
