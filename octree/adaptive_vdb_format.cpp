@@ -144,6 +144,11 @@ AdaptiveVolume load_adaptive(const std::string& path)
     AdaptiveVolume v;
     v.samples = s;
     v.k = meta_or<int, openvdb::Int32Metadata>(*s, "isodel_k", 1);
+    // Touching leaves differ by at most k levels; a bound below 1 describes no octree (the
+    // balance and the 3k+1 trap bound need k >= 1).
+    if (v.k < 1)
+        throw InvalidInput(path + ": isodel_k (the level difference of touching leaves) is " + std::to_string(v.k) +
+                           ", must be at least 1");
     v.tolerance = meta_or<double, openvdb::DoubleMetadata>(*s, "isodel_tolerance", 0.0);
     v.source = meta_or<std::string, openvdb::StringMetadata>(*s, "isodel_source", std::string());
     const int levels = meta_or<int, openvdb::Int32Metadata>(*s, "isodel_levels", 1);

@@ -155,3 +155,40 @@ TEST_CASE("load_adaptive and read_importance_grid read only grids the file check
     CHECK_THROWS_WITH(isodel::read_importance_grid(importance), Catch::Contains("importance grid '0_points' has type"));
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("load_adaptive refuses a level difference bound below 1, naming the file", "[octree][format]")
+{
+    // fuzz_load_adaptive: isodel_k = 0 was loaded and handed on (the balance and the 3k+1 bound
+    // need k >= 1). The fuzzer's input, and the same metadata written by hand.
+    openvdb::initialize();
+    const std::string found = std::string(ISODEL_TEST_DATA) + "/../fuzz/findings/load_adaptive_k_zero.vdb";
+    CHECK_THROWS_WITH(isodel::load_adaptive(found), Catch::StartsWith(found + ": isodel_k") && Catch::Contains("at least 1"));
+    const auto dir = std::filesystem::temp_directory_path() / "isodel_adaptive_format_k";
+    std::filesystem::create_directories(dir);
+    auto g = testing::random_adaptive(5, 1, 8, 2);
+    isodel::AdaptiveVolume v;
+    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(g->samples_ptr());
+    v.levels = g->masks();
+    v.domain = g->domain();
+    const std::string ok = (dir / "ok.vdb").string();
+    isodel::save_adaptive(ok, v);
+    CHECK(isodel::load_adaptive(ok).k == 1);
+    for (const int k : {0, -3}) {
+        openvdb::GridPtrVec grids;
+        {
+            openvdb::io::File f(ok);
+            f.open(false);
+            grids = *f.getGrids();
+        }
+        for (auto& grid : grids)
+            if (grid->getName() == v.samples->getName() || grid->getName() == "samples") {
+                grid->removeMeta("isodel_k");
+                grid->insertMeta("isodel_k", openvdb::Int32Metadata(k));
+            }
+        const std::string bad = (dir / ("k" + std::to_string(k) + ".vdb")).string();
+        openvdb::io::File(bad).write(grids);
+        CHECK_THROWS_WITH(isodel::load_adaptive(bad), Catch::StartsWith(bad + ": isodel_k") &&
+                                                          Catch::Contains("is " + std::to_string(k)));
+        CHECK_THROWS_AS(isodel::load_adaptive(bad), isodel::InvalidInput);
+    }
+}
