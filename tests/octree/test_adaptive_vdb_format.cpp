@@ -15,6 +15,16 @@
 using namespace isodel::octree;
 
 namespace {
+/// \p g as the public AdaptiveVolume save_adaptive writes (k stays its default, 1).
+isodel::AdaptiveVolume volume_of(const AdaptiveGrid& g)
+{
+    isodel::AdaptiveVolume v;
+    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(g.samples_ptr());
+    v.levels = g.masks();
+    v.domain = g.domain();
+    return v;
+}
+
 template <typename GridT>
 bool same_grid(const GridT& a, const GridT& b)
 {
@@ -96,10 +106,7 @@ TEST_CASE("load_adaptive and read_importance_grid read only grids the file check
     std::filesystem::create_directories(dir);
     auto g = testing::random_adaptive(77, 1, 12, 3);
     REQUIRE(g->max_level() >= 1);
-    isodel::AdaptiveVolume v;
-    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(g->samples_ptr());
-    v.levels = g->masks();
-    v.domain = g->domain();
+    const isodel::AdaptiveVolume v = volume_of(*g);
     const std::string path = (dir / "adaptive.vdb").string();
     isodel::save_adaptive(path, v);
     // The same grids and a point grid (a type the check does not walk): still loads, the point
@@ -165,11 +172,7 @@ TEST_CASE("load_adaptive refuses a level difference bound below 1, naming the fi
     CHECK_THROWS_WITH(isodel::load_adaptive(found), Catch::StartsWith(found + ": isodel_k") && Catch::Contains("at least 1"));
     const auto dir = std::filesystem::temp_directory_path() / "isodel_adaptive_format_k";
     std::filesystem::create_directories(dir);
-    auto g = testing::random_adaptive(5, 1, 8, 2);
-    isodel::AdaptiveVolume v;
-    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(g->samples_ptr());
-    v.levels = g->masks();
-    v.domain = g->domain();
+    const isodel::AdaptiveVolume v = volume_of(*testing::random_adaptive(5, 1, 8, 2));
     const std::string ok = (dir / "ok.vdb").string();
     isodel::save_adaptive(ok, v);
     CHECK(isodel::load_adaptive(ok).k == 1);
