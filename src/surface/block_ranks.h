@@ -110,7 +110,6 @@ public:
 private:
     BlockTransport* t_;
     std::vector<int> owner_; ///< per block, after deal
-
 };
 
 } // namespace isodel::mesher

@@ -142,17 +142,29 @@ void for_my_blocks(const BlockRanks& ranks, std::size_t n, SharedInterrupter& sh
     ranks.agree(failure);
 }
 
+/// The block lattice's size per axis (partition_domain's order: x fastest, then y, then z).
+std::array<int, 3> lattice_dims(const std::vector<BlockSpec>& specs)
+{
+    return {specs.back().index[0] + 1, specs.back().index[1] + 1, specs.back().index[2] + 1};
+}
+
+/// The index of the block at lattice position (x, y, z).
+std::size_t lattice_index(const std::array<int, 3>& dims, int x, int y, int z)
+{
+    return (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
+}
+
 /// The blocks whose boxes may read points of block \p i: its neighbours within \p reach blocks
 /// per axis, found on the block lattice (partition_domain's order: x fastest, then y, then z).
 std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::size_t i, const std::array<int, 3>& reach)
 {
-    const std::array<int, 3> dims{specs.back().index[0] + 1, specs.back().index[1] + 1, specs.back().index[2] + 1};
+    const std::array<int, 3> dims = lattice_dims(specs);
     const std::array<int, 3>& c = specs[i].index;
     std::vector<std::size_t> out;
     for (int z = std::max(0, c[2] - reach[2]); z <= std::min(dims[2] - 1, c[2] + reach[2]); ++z)
         for (int y = std::max(0, c[1] - reach[1]); y <= std::min(dims[1] - 1, c[1] + reach[1]); ++y)
             for (int x = std::max(0, c[0] - reach[0]); x <= std::min(dims[0] - 1, c[0] + reach[0]); ++x) {
-                const std::size_t j = (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
+                const std::size_t j = lattice_index(dims, x, y, z);
                 if (j != i) out.push_back(j);
             }
     return out;
@@ -164,7 +176,7 @@ std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::si
 std::vector<double> block_work(const octree::SampleField& field, const std::vector<BlockSpec>& specs)
 {
     std::vector<double> work(specs.size(), 1.0);
-    const std::array<int, 3> dims{specs.back().index[0] + 1, specs.back().index[1] + 1, specs.back().index[2] + 1};
+    const std::array<int, 3> dims = lattice_dims(specs);
     const openvdb::Coord lo0 = specs.front().core.min();
     const openvdb::Coord step = specs.front().core.dim();
     const openvdb::Coord reach = specs.front().core.min() - specs.front().box.min();
@@ -180,7 +192,7 @@ std::vector<double> block_work(const octree::SampleField& field, const std::vect
         for (int z = from[2]; z <= to[2]; ++z)
             for (int y = from[1]; y <= to[1]; ++y)
                 for (int x = from[0]; x <= to[0]; ++x) {
-                    const std::size_t j = (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
+                    const std::size_t j = lattice_index(dims, x, y, z);
                     if (specs[j].box.isInside(e.lower)) work[j] += 1;
                 }
     }
