@@ -77,6 +77,15 @@ struct MeshOptions {
     /// within a region): M, the region tags and the volumes stay; the tets are no longer all
     /// Delaunay. false keeps Del(E u G u N u G') restricted to the region(s).
     bool improve_tets = true;
+    /// With tets: the dihedral range the tets M pins down are held to. The tets phase never
+    /// changes M, so a tet with a face on M still out of [tet_min_dihedral_deg,
+    /// tet_max_dihedral_deg] after the improvement is held by that face: the face's surface
+    /// point (a point of Sigma) is inserted and the pipeline runs again, every guarantee checked
+    /// again (as for facet_angle_deg), up to 3 more runs (MeshStats::tet_sliver_stop). Off at 0
+    /// and 180 (the default), and M is then the mesh of the same run without tets; 12 and 165
+    /// with facet_angle_deg = 25 is the setting docs/tetrahedra.md measures.
+    double tet_min_dihedral_deg = 0;
+    double tet_max_dihedral_deg = 180;
     TetSpacing tet_spacing = TetSpacing::Graded; ///< G' on a uniform grid (TetSpacing)
     /// Graded G': a sample at chessboard distance d voxels from G (d >= 1) is kept when it lies
     /// on the lattice of spacing 2^l (counted from the box's lowest corner), 2^l the largest
@@ -135,7 +144,7 @@ struct MeshResult {
 };
 
 /// Checks \p options before any work: eps (or eps_voxels) positive and finite, threads,
-/// max_rounds, max_points, block_voxels, facet_angle_deg and the adaptive options in their
+/// max_rounds, max_points, block_voxels, facet_angle_deg, the tet dihedral range and the adaptive options in their
 /// ranges, and adaptive without block_voxels.
 /// \throw InvalidInput naming the option and the value it refuses
 void check_mesh_options(const MeshOptions& options);

@@ -91,6 +91,24 @@ inline const char* to_string(FacetAngleStop stop)
     return "";
 }
 
+/// Why the runs against the bad tets M pins down (MeshOptions::tet_min_dihedral_deg) stopped.
+enum class TetSliverStop {
+    Off,     ///< no tets, or no dihedral range
+    Met,     ///< no tet with a face on M is out of the range
+    RunBound ///< the last of its runs still left some (their count is in MeshStats::tets)
+};
+
+/// "" (Off), "met", "run bound": the words of the --stats JSON.
+inline const char* to_string(TetSliverStop stop)
+{
+    switch (stop) {
+    case TetSliverStop::Met: return "met";
+    case TetSliverStop::RunBound: return "run bound";
+    case TetSliverStop::Off: break;
+    }
+    return "";
+}
+
 /// What a run did and measured; serialised by to_json (include/isodel/mesh.h) and the CLI's --stats.
 struct MeshStats {
     std::size_t e_points = 0, g_points = 0, n_topology = 0, n_geometry = 0, snapped = 0;
@@ -98,6 +116,12 @@ struct MeshStats {
     /// why it stopped (Off without it).
     std::size_t n_facet_angle = 0;
     FacetAngleStop facet_angle_stop = FacetAngleStop::Off;
+    /// With tets and a dihedral range (MeshOptions::tet_min_dihedral_deg): the points of Sigma
+    /// inserted to free the bad tets M pinned down, the extra runs of the pipeline that took, and
+    /// why it stopped.
+    std::size_t n_tet_sliver = 0;
+    int tet_sliver_runs = 0;
+    TetSliverStop tet_sliver_stop = TetSliverStop::Off;
     std::size_t vertices = 0, triangles = 0;
     int rounds = 0;
     double effective_isovalue = 0.0; ///< v* (include/isodel/mesh.h: the tie rule)

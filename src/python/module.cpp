@@ -71,6 +71,7 @@ struct MeshArgs {
     int max_rounds = 2000, block_voxels = 0;
     std::size_t max_points = 0;
     double facet_angle_deg = 0;
+    double tet_min_dihedral_deg = 0, tet_max_dihedral_deg = 180;
 };
 
 MeshOptions mesh_options(const MeshArgs& a)
@@ -96,6 +97,8 @@ MeshOptions mesh_options(const MeshArgs& a)
     mo.tet_size = a.tet_size;
     mo.tet_grading = a.tet_grading;
     mo.facet_angle_deg = a.facet_angle_deg;
+    mo.tet_min_dihedral_deg = a.tet_min_dihedral_deg;
+    mo.tet_max_dihedral_deg = a.tet_max_dihedral_deg;
     mo.adaptive = a.adaptive;
     check_mesh_options(mo); // before any work, with the CLI's messages
     return mo;
@@ -334,7 +337,9 @@ PYBIND11_MODULE(_isodel, m)
         .def_readwrite("max_rounds", &MeshArgs::max_rounds)
         .def_readwrite("block_voxels", &MeshArgs::block_voxels)
         .def_readwrite("max_points", &MeshArgs::max_points)
-        .def_readwrite("facet_angle_deg", &MeshArgs::facet_angle_deg);
+        .def_readwrite("facet_angle_deg", &MeshArgs::facet_angle_deg)
+        .def_readwrite("tet_min_dihedral_deg", &MeshArgs::tet_min_dihedral_deg)
+        .def_readwrite("tet_max_dihedral_deg", &MeshArgs::tet_max_dihedral_deg);
     m.def("mesh", &mesh, py::arg("volume"), py::arg("args"), py::arg("spacing"), py::arg("origin"),
           py::arg("axis_order"), py::arg("grid"), py::arg("progress"));
     m.def("verify", &verify, py::arg("volume"), py::arg("iso"), py::arg("mesh"), py::arg("eps"),

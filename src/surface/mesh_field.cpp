@@ -14,6 +14,7 @@
 #include "surface/refiner.h"
 #include "surface/surface_pipeline.h"
 #include "surface/surface_extraction.h"
+#include "refinement/surface_slivers.h"
 #include "volume/volume_mesh.h"
 
 #include <isodel/errors.h>
@@ -67,13 +68,21 @@ std::vector<std::array<double, 3>> all_points(const Delaunay& dt)
 
 } // namespace
 
-MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupter* interrupter)
+namespace {
+
+/// Runs of the pipeline after the first against the bad tets M pins down: each frees the tets
+/// of the previous one and may pin others (MeshStats::tet_sliver_stop).
+constexpr int kMaxSliverRuns = 3;
+
+/// One run of the pipeline. With tets and a dihedral range, \p next_seeds receives the seeds of
+/// the next run when M pins bad tets down (refinement/surface_slivers.h): every N point of this
+/// run and the surface points that free them. Empty when there are none.
+MeshResult mesh_field_once(const FieldRun& run, const MeshOptions& options, Interrupter* interrupter,
+                           std::vector<SeedPoint>& next_seeds, std::size_t& fresh)
 {
     const auto t_start = Clock::now();
     MeshResult result;
     MeshStats& st = result.stats;
-    check_mesh_options(options);
-    const ThreadLimit threads(options.threads);
     st.effective_isovalue = run.field->effective_isovalue();
 
     // Steps 1-3: E, G, Del(E u G) (surface_pipeline.h).
@@ -93,7 +102,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
 
     // Step 6: M, the restricted Delaunay surface.
     const auto t_extract = Clock::now();
-    result.surface = extract_surface(dt, refiner.cache());
+    std::vector<std::uint32_t> surface_ids;
+    result.surface = extract_surface(dt, refiner.cache(), &surface_ids);
     if (run.final_points) *run.final_points = all_points(dt);
     st.vertices = result.surface.vertices.size();
     st.triangles = result.surface.triangles.size();
@@ -114,9 +124,58 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         if (options.tet_spacing == TetSpacing::Graded) vp.spacing = &spacing;
         result.tets = build_volume_mesh(dt, refiner.cache(), field, pipeline.g_mask().get(), result.surface, vp, st.tets);
         st.seconds["tets"] = seconds_since(t0);
+        if (options.tet_min_dihedral_deg > 0 || options.tet_max_dihedral_deg < 180) {
+            const std::vector<Point> free = surface_sliver_points(result.tets, surface_ids, refiner.cache(),
+                                                                  options.tet_min_dihedral_deg,
+                                                                  options.tet_max_dihedral_deg);
+            fresh = free.size();
+            if (!free.empty()) {
+                std::vector<std::pair<std::uint32_t, SeedPoint>> n_points;
+                for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+                    if (v->info().kind == PointKind::Topology || v->info().kind == PointKind::Geometry)
+                        n_points.push_back({v->info().id, {{v->point().x(), v->point().y(), v->point().z()}, v->info().kind}});
+                std::sort(n_points.begin(), n_points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+                for (const auto& [id, seed] : n_points) next_seeds.push_back(seed);
+                for (const Point& p : free) next_seeds.push_back({{p.x(), p.y(), p.z()}, PointKind::Geometry});
+            }
+        }
     }
     st.seconds["total"] = seconds_since(t_start);
     st.peak_memory_bytes = peak_memory_bytes();
+    return result;
+}
+
+} // namespace
+
+MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupter* interrupter)
+{
+    check_mesh_options(options);
+    const ThreadLimit threads(options.threads);
+    std::vector<SeedPoint> next_seeds;
+    std::size_t fresh = 0;
+    MeshResult result = mesh_field_once(run, options, interrupter, next_seeds, fresh);
+    if (options.tets == TetRegion::None || (options.tet_min_dihedral_deg <= 0 && options.tet_max_dihedral_deg >= 180))
+        return result;
+    // The bad tets M pins down (refinement/surface_slivers.h): the pipeline again with the
+    // points that free them, every guarantee checked again, up to kMaxSliverRuns more runs.
+    std::size_t inserted = 0;
+    double earlier_seconds = 0;
+    int runs = 0;
+    while (!next_seeds.empty() && runs < kMaxSliverRuns) {
+        ++runs;
+        inserted += fresh;
+        earlier_seconds += result.stats.seconds["total"];
+        FieldRun again = run;
+        again.seeds = std::move(next_seeds);
+        next_seeds.clear();
+        result = mesh_field_once(again, options, interrupter, next_seeds, fresh);
+    }
+    MeshStats& st = result.stats;
+    st.n_tet_sliver = inserted;
+    st.tet_sliver_runs = runs;
+    st.tet_sliver_stop = next_seeds.empty() ? TetSliverStop::Met : TetSliverStop::RunBound;
+    st.seconds["tet_sliver_runs"] = earlier_seconds;
+    st.seconds["total"] += earlier_seconds;
     return result;
 }
 

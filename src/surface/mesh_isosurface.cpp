@@ -170,6 +170,11 @@ void check_mesh_options(const MeshOptions& o)
     // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
     if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
         refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");
+    // A tetrahedron's dihedral angles cannot all exceed the regular one's, arccos(1/3).
+    if (!(o.tet_min_dihedral_deg >= 0) || o.tet_min_dihedral_deg > 70)
+        refuse("tet_min_dihedral_deg must be in [0, 70] (got " + num(o.tet_min_dihedral_deg) + ")");
+    if (!(o.tet_max_dihedral_deg >= 71) || o.tet_max_dihedral_deg > 180)
+        refuse("tet_max_dihedral_deg must be in [71, 180] (got " + num(o.tet_max_dihedral_deg) + ")");
     if (!(o.tet_grading > 0) || !std::isfinite(o.tet_grading))
         refuse("tet_grading must be a finite number > 0 (got " + num(o.tet_grading) + ")");
     if (!(o.tet_size >= 0) || !std::isfinite(o.tet_size))

@@ -17,6 +17,9 @@ std::string to_json(const MeshStats& s)
                    {"snapped", s.snapped},
                    {"N_facet_angle", s.n_facet_angle},
                    {"facet_angle_stop", to_string(s.facet_angle_stop)},
+                   {"N_tet_sliver", s.n_tet_sliver},
+                   {"tet_sliver_runs", s.tet_sliver_runs},
+                   {"tet_sliver_stop", to_string(s.tet_sliver_stop)},
                    {"vertices", s.vertices},
                    {"triangles", s.triangles},
                    {"rounds", s.rounds}};

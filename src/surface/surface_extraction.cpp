@@ -6,7 +6,7 @@
 
 namespace isodel::mesher {
 
-SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache)
+SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache, std::vector<std::uint32_t>* vertex_ids)
 {
     (void)dt;
     SurfaceMesh mesh;
@@ -25,6 +25,7 @@ SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache)
         index[id] = std::int32_t(mesh.vertices.size());
         const Point& p = v->point();
         mesh.vertices.push_back({p.x(), p.y(), p.z()});
+        if (vertex_ids) vertex_ids->push_back(id);
     }
     for (const auto& e : cache.active()) {
         if (e.record->crossings != 1) continue;

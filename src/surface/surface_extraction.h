@@ -7,7 +7,8 @@
 
 namespace isodel::mesher {
 
-SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache);
+/// \p vertex_ids, when given: the Delaunay vertex id of each of M's vertices, in index order.
+SurfaceMesh extract_surface(const Delaunay& dt, const FacetCache& cache, std::vector<std::uint32_t>* vertex_ids = nullptr);
 
 /// The deterministic triangle order, independent of the triangulation's memory layout: by
 /// sorted vertex indices (distinct for distinct triangles).

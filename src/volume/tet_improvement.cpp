@@ -12,7 +12,8 @@ TetImprovementStats Improver::run(const TetImprovementParams& params, std::vecto
 {
     TetImprovementStats st;
     double worst = kBest;
-    for (std::size_t t = 0; t < tets_.size(); ++t) worst = std::min(worst, q(t));
+    for (const Tet& t : tets_)
+        worst = std::min(worst, smallest_angle_quality(P(t[0]), P(t[1]), P(t[2]), P(t[3])));
     st.min_dihedral_before_deg = tets_.empty() ? 0 : degrees(worst);
     for (; st.passes < params.max_passes; ++st.passes) {
         std::vector<std::tuple<double, Tet, std::size_t>> bad;
@@ -289,7 +290,7 @@ bool Improver::collapse(std::int32_t v, const Tet bad)
 double min_dihedral_deg(const tet_improver::V3& a, const tet_improver::V3& b, const tet_improver::V3& c,
                         const tet_improver::V3& d)
 {
-    return tet_improver::degrees(tet_improver::quality(a, b, c, d));
+    return tet_improver::degrees(tet_improver::smallest_angle_quality(a, b, c, d));
 }
 
 } // namespace isodel::mesher

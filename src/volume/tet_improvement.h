@@ -45,7 +45,7 @@
 namespace isodel::mesher {
 
 struct TetImprovementParams {
-    double target_deg = 15.0;   ///< work on tets whose smallest dihedral angle is below this
+    double target_deg = 15.0;   ///< work on tets with a dihedral angle below this or above 180 minus it
     int max_passes = 10;        ///< bound on the sweeps over the bad tets (per block)
     double block_size = 0;      ///< world units; 0: the whole mesh as one block, serially
     /// The last, serial, block (tet_improvement_blocks.cpp) improved as its vertex-disjoint

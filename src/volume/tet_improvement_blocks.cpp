@@ -117,13 +117,19 @@ double tet_quality(const TetMesh& mesh, const Tet& x)
                                  mesh.vertices[std::size_t(x[2])], mesh.vertices[std::size_t(x[3])]);
 }
 
-/// The smallest quality over the tets of \p mesh (kBest when it has none).
-double worst_quality(const TetMesh& mesh)
+/// The smallest tet_improver::smallest_angle_quality over the tets of \p mesh (kBest when it
+/// has none).
+double worst_smallest_angle(const TetMesh& mesh)
 {
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, mesh.tets.size(), 4096), tet_improver::kBest,
         [&](const auto& r, double w) {
-            for (std::size_t t = r.begin(); t != r.end(); ++t) w = std::min(w, tet_quality(mesh, mesh.tets[t]));
+            for (std::size_t t = r.begin(); t != r.end(); ++t) {
+                const Tet& x = mesh.tets[t];
+                w = std::min(w, tet_improver::smallest_angle_quality(
+                                    mesh.vertices[std::size_t(x[0])], mesh.vertices[std::size_t(x[1])],
+                                    mesh.vertices[std::size_t(x[2])], mesh.vertices[std::size_t(x[3])]));
+            }
             return w;
         },
         [](double a, double b) { return std::min(a, b); });
@@ -322,7 +328,7 @@ TetImprovementStats improve_tets(TetMesh& mesh, std::size_t surface_vertices, co
 
     const double target = -std::cos(params.target_deg * tet_improver::kPi / 180.0);
     TetImprovementStats total;
-    const double worst = worst_quality(mesh);
+    const double worst = worst_smallest_angle(mesh);
     total.min_dihedral_before_deg = mesh.tets.empty() ? 0 : tet_improver::degrees(worst);
 
     // Two sweeps of blocks, each block improved on its own and concurrently: the second grid is

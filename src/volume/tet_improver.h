@@ -38,25 +38,45 @@ inline int orient(const V3& a, const V3& b, const V3& c, const V3& d)
 }
 
 
-/// Tet quality inside the improver: minus the largest cosine of the six dihedral angles, which
-/// grows with the smallest angle (no acos in the inner loops); -1 for a flat tet. The dihedral
-/// angle at edge (i, j) is the angle between the faces opposite k and l, the other two
-/// vertices: cos = -n_k . n_l / |n_k| |n_l| for the faces' outward (or all inward) normals. Four
-/// cross products instead of the twelve of two normals per edge: this is the improvement's
-/// innermost function (every trial position of a smoothing evaluates it on the whole star).
-inline double quality(const V3& a, const V3& b, const V3& c, const V3& d)
+/// The dot products of the faces' unit normals, smallest and largest: minus the cosines of the
+/// largest and the smallest of the six dihedral angles. The dihedral angle at edge (i, j) is the
+/// angle between the faces opposite k and l, the other two vertices: cos = -n_k . n_l / |n_k|
+/// |n_l| for the faces' outward (or all inward) normals. Four cross products instead of the
+/// twelve of two normals per edge: this is the improvement's innermost function (every trial
+/// position of a smoothing evaluates it on the whole star). false for a flat tet.
+inline bool normal_dots(const V3& a, const V3& b, const V3& c, const V3& d, double& lowest, double& highest)
 {
     const V3 ab = sub(b, a), ac = sub(c, a), ad = sub(d, a), bc = sub(c, b), bd = sub(d, b);
     // All inward when det(ab, ac, ad) > 0, all outward otherwise: the cosines are the same.
     V3 n[4] = {cross(bd, bc), cross(ac, ad), cross(ad, ab), cross(ab, ac)};
     for (V3& v : n) {
         const double len = norm(v);
-        if (!(len > 0)) return -1;
+        if (!(len > 0)) return false;
         v = {v[0] / len, v[1] / len, v[2] / len};
     }
-    const double smallest = std::min({dot(n[0], n[1]), dot(n[0], n[2]), dot(n[0], n[3]), dot(n[1], n[2]),
-                                      dot(n[1], n[3]), dot(n[2], n[3])});
-    return std::max(smallest, -1.0);
+    const double dots[6] = {dot(n[0], n[1]), dot(n[0], n[2]), dot(n[0], n[3]),
+                            dot(n[1], n[2]), dot(n[1], n[3]), dot(n[2], n[3])};
+    lowest = *std::min_element(dots, dots + 6);
+    highest = *std::max_element(dots, dots + 6);
+    return true;
+}
+
+/// Tet quality inside the improver: -cos of the smaller of the smallest dihedral angle and 180
+/// degrees minus the largest, so that a tet is bad when an angle is near 0 or near 180 (a cap's
+/// smallest angle can be fair while its largest is near flat, and a solver's conditioning
+/// suffers from both); no acos in the inner loops; -1 for a flat tet.
+inline double quality(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    double lowest = 0, highest = 0;
+    if (!normal_dots(a, b, c, d, lowest, highest)) return -1;
+    return std::max(std::min(lowest, -highest), -1.0);
+}
+/// -cos of the smallest dihedral angle alone (what the statistics report).
+inline double smallest_angle_quality(const V3& a, const V3& b, const V3& c, const V3& d)
+{
+    double lowest = 0, highest = 0;
+    if (!normal_dots(a, b, c, d, lowest, highest)) return -1;
+    return std::max(lowest, -1.0);
 }
 inline double degrees(double q) { return std::acos(std::clamp(-q, -1.0, 1.0)) * 180.0 / kPi; }
 inline constexpr double kBest = 2;     ///< above every quality

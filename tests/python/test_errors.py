@@ -71,6 +71,8 @@ def test_nan_is_refused_naming_its_index():
     (dict(tets="inside", tet_spacing="coarse"), "tet_spacing"),
     (dict(tets="inside", tet_grading=0), "tet_grading"),
     (dict(tets="inside", tet_size=-1), "tet_size"),
+    (dict(tets="inside", tet_min_dihedral_deg=80), "tet_min_dihedral_deg"),
+    (dict(tets="inside", tet_max_dihedral_deg=30), "tet_max_dihedral_deg"),
 ])
 def test_bad_options(kwargs, message):
     with pytest.raises(ValueError, match=message):

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "volume/tet_improvement.h"
+#include "volume/tet_improver.h"
 #include "volume/tet_quality.h"
 
 #include <isodel/mesh.h>
@@ -24,8 +25,8 @@ namespace {
 
 using V3 = std::array<double, 3>;
 
-/// Smallest dihedral angle in degrees, two normals per edge.
-double reference_min_dihedral(const std::array<V3, 4>& p)
+/// Smallest dihedral angle in degrees, two normals per edge (\p largest: the largest instead).
+double reference_min_dihedral(const std::array<V3, 4>& p, bool largest = false)
 {
     const auto sub = [](const V3& a, const V3& b) { return V3{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
     const auto cross = [](const V3& a, const V3& b) {
@@ -33,13 +34,14 @@ double reference_min_dihedral(const std::array<V3, 4>& p)
     };
     const auto dot = [](const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
     static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    double best = 180;
+    double best = largest ? 0 : 180;
     for (const auto& e : kEdges) {
         const V3 ev = sub(p[e[1]], p[e[0]]);
         const V3 n1 = cross(ev, sub(p[e[2]], p[e[0]])), n2 = cross(ev, sub(p[e[3]], p[e[0]]));
         const double den = std::sqrt(dot(n1, n1) * dot(n2, n2));
         if (!(den > 0)) return 0;
-        best = std::min(best, std::acos(std::clamp(dot(n1, n2) / den, -1.0, 1.0)) * 180.0 / 3.14159265358979323846);
+        const double angle = std::acos(std::clamp(dot(n1, n2) / den, -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+        best = largest ? std::max(best, angle) : std::min(best, angle);
     }
     return best;
 }
@@ -153,4 +155,27 @@ TEST_CASE("tet quality statistics: the same with 1 and 2 threads, and a serial r
     std::size_t angles = 0;
     for (const std::size_t n : one.dihedral_histogram) angles += n;
     CHECK(angles == 6 * m.tets.size());
+}
+
+TEST_CASE("tet quality: the improver's measure is the smallest angle or 180 degrees minus the largest",
+          "[mesher][tets]")
+{
+    // The improver works on the tets whose measure is under its target (15 degrees): a cap with a
+    // fair smallest angle and a largest angle near 180 degrees is one of them.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 5000; ++i) {
+        std::array<V3, 4> p;
+        for (auto& v : p) v = {u(rng), u(rng), u(rng)};
+        const double lo = reference_min_dihedral(p), hi = reference_min_dihedral(p, true);
+        const double got = tet_improver::degrees(tet_improver::quality(p[0], p[1], p[2], p[3]));
+        CHECK(got == Approx(std::min(lo, 180 - hi)).margin(1e-6));
+        CHECK(tet_improver::degrees(tet_improver::smallest_angle_quality(p[0], p[1], p[2], p[3])) ==
+              Approx(lo).margin(1e-6));
+    }
+    const std::array<V3, 4> cap{V3{-0.813, -0.738, -0.588}, V3{0.263, 0.87, -0.838}, V3{-0.047, 0.671, -0.854},
+                                V3{0.062, 0.451, -0.651}};
+    CHECK(reference_min_dihedral(cap) > 15);
+    CHECK(reference_min_dihedral(cap, true) > 165);
+    CHECK(tet_improver::degrees(tet_improver::quality(cap[0], cap[1], cap[2], cap[3])) < 15);
 }

@@ -59,6 +59,12 @@ std::pair<double, double> dihedral_range(const std::array<V3, 4>& p)
     return {lo, hi};
 }
 
+/// --tet-dihedral MIN MAX: MeshOptions::tet_min_dihedral_deg and tet_max_dihedral_deg (off).
+struct DihedralRange {
+    double min_deg = 0, max_deg = 180;
+};
+DihedralRange g_range;
+
 double seconds_since(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -80,6 +86,8 @@ UniformRun run_uniform(const isodel::Volume& vol, double iso, double facet_angle
     mo.tets = isodel::TetRegion::Inside;
     mo.tet_spacing = isodel::TetSpacing::Uniform;
     mo.facet_angle_deg = facet_angle;
+    mo.tet_min_dihedral_deg = g_range.min_deg;
+    mo.tet_max_dihedral_deg = g_range.max_deg;
     const isodel::MeshResult r = isodel::mesh_isosurface(*vol.grid, mo);
     UniformRun u{r.tets.tets.size(), 0, seconds_since(t0)};
     for (const auto& t : r.tets.tets)
@@ -102,14 +110,18 @@ void run(const std::string& file, double iso, double facet_angle, bool compare_u
     mo.eps_voxels = 0.5;
     mo.tets = isodel::TetRegion::Inside;
     mo.facet_angle_deg = facet_angle;
+    mo.tet_min_dihedral_deg = g_range.min_deg;
+    mo.tet_max_dihedral_deg = g_range.max_deg;
     const isodel::MeshResult r = isodel::mesh_isosurface(*vol.grid, mo);
     const double t_isodel = seconds_since(t0);
     double lo_i = 180, hi_i = 0;
     std::size_t bad_i = 0, bad_m = 0; // tets with a dihedral angle under 10 degrees
+    std::size_t out_i = 0, out_m = 0; // ... outside the target range [12, 165] degrees
     for (const auto& t : r.tets.tets) {
         const auto [lo, hi] = dihedral_range({r.tets.vertices[t[0]], r.tets.vertices[t[1]], r.tets.vertices[t[2]],
                                               r.tets.vertices[t[3]]});
         bad_i += lo < 10;
+        out_i += lo < 12 || hi > 165;
         lo_i = std::min(lo_i, lo);
         hi_i = std::max(hi_i, hi);
     }
@@ -142,12 +154,14 @@ void run(const std::string& file, double iso, double facet_angle, bool compare_u
         }
         const auto [lo, hi] = dihedral_range(p);
         bad_m += lo < 10;
+        out_m += lo < 12 || hi > 165;
         lo_m = std::min(lo_m, lo);
         hi_m = std::max(hi_m, hi);
     }
-    std::printf("%-34s %9zu %9.4f %9.4f %9.4f %7zu %7.1f | %9zu %9.4f %9.4f %7zu %7.1f",
+    std::printf("%-34s %9zu %9.4f %9.4f %9.4f %7zu %7zu %4d %7.1f | %9zu %9.4f %9.4f %7zu %7zu %7.1f",
                 file.substr(file.rfind('/') + 1).c_str(), r.tets.tets.size(), r.stats.tets.min_dihedral_deg_delaunay,
-                lo_i, hi_i, bad_i, t_isodel, std::size_t(c3t3.number_of_cells_in_complex()), lo_m, hi_m, bad_m, t_mesh3);
+                lo_i, hi_i, bad_i, out_i, r.stats.tet_sliver_runs, t_isodel,
+                std::size_t(c3t3.number_of_cells_in_complex()), lo_m, hi_m, bad_m, out_m, t_mesh3);
     if (compare_uniform) {
         const UniformRun u = run_uniform(vol, iso, facet_angle);
         std::printf(" | %9zu %7zu %7.1f", u.tets, u.bad, u.seconds);
@@ -163,6 +177,8 @@ int main(int argc, char** argv)
     openvdb::initialize();
     // --facet-angle DEG: isodel refines M's triangles to that angle first (isodel mesh
     // --facet-angle), as Mesh_3's facet_angle = 25 does for its own surface.
+    // --tet-dihedral MIN MAX: isodel frees the tets M pins down outside that range (isodel mesh
+    // --tet-min-dihedral, --tet-max-dihedral).
     // --compare-uniform: also isodel with every sample as G' (--uniform-tets), in the same run.
     double facet_angle = 0;
     bool compare_uniform = false;
@@ -172,6 +188,9 @@ int main(int argc, char** argv)
         if (a == "--facet-angle" && first + 1 < argc) {
             facet_angle = std::stod(argv[first + 1]);
             first += 2;
+        } else if (a == "--tet-dihedral" && first + 2 < argc) {
+            g_range = {std::stod(argv[first + 1]), std::stod(argv[first + 2])};
+            first += 3;
         } else if (a == "--compare-uniform") {
             compare_uniform = true;
             ++first;
@@ -180,14 +199,17 @@ int main(int argc, char** argv)
         }
     }
     if (argc - first < 2 || (argc - first) % 2 != 0) {
-        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] [--compare-uniform] FILE ISO [FILE ISO ...]\n");
+        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] [--tet-dihedral MIN MAX] [--compare-uniform] FILE ISO [FILE ISO ...]\n");
         return 2;
     }
     // isodel: min_Del is the Delaunay tets' smallest angle, min_dih/max_dih after improvement
     // (src/volume/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees.
     std::printf("isodel facet angle: %s\n", facet_angle > 0 ? std::to_string(facet_angle).c_str() : "none");
-    std::printf("%-34s %9s %9s %9s %9s %7s %7s | %9s %9s %9s %7s %7s", "volume (eps 0.5 voxel, inside)", "isodel",
-                "min_Del", "min_dih", "max_dih", "<10deg", "s", "Mesh_3", "min_dih", "max_dih", "<10deg", "s");
+    std::printf("isodel tet dihedral range: %g .. %g (off at 0 .. 180); out: tets outside [12, 165] degrees\n",
+                g_range.min_deg, g_range.max_deg);
+    std::printf("%-34s %9s %9s %9s %9s %7s %7s %4s %7s | %9s %9s %9s %7s %7s %7s", "volume (eps 0.5 voxel, inside)",
+                "isodel", "min_Del", "min_dih", "max_dih", "<10deg", "out", "runs", "s", "Mesh_3", "min_dih", "max_dih",
+                "<10deg", "out", "s");
     if (compare_uniform) std::printf(" | %9s %7s %7s", "uniform", "<10deg", "s");
     std::printf("\n");
     for (int i = first; i + 1 < argc; i += 2) {

@@ -32,6 +32,7 @@ struct MeshCliOptions {
     bool uniform_tets = false;
     double tet_size = 0, grading = 0.5;
     double facet_angle = 0;
+    double tet_min_dihedral = 0, tet_max_dihedral = 180;
     bool adaptive = false;
     double adaptive_share = 0.5;
     int adaptive_k = 1, adaptive_max_level = 5;
@@ -56,6 +57,14 @@ void add_tet_options(CLI::App& cmd, MeshCliOptions& o)
                        "Growth of the point spacing per voxel of distance from the protective layer around M "
                        "(default 0.5)")
             ->check(CLI::PositiveNumber);
+    cmd.add_option("--tet-min-dihedral", o.tet_min_dihedral,
+                   "Tets with a face on M and, after the improvement, a dihedral angle under this many degrees "
+                   "get a point of the level set inserted on that face and the run is repeated, every "
+                   "guarantee checked again (up to 3 more runs; default 0: off, M as without --tets)")
+        ->check(CLI::Range(0.0, 70.0));
+    cmd.add_option("--tet-max-dihedral", o.tet_max_dihedral,
+                   "... or over this many degrees (default 180: off)")
+        ->check(CLI::Range(71.0, 180.0));
     cmd.add_flag("--uniform-tets", o.uniform_tets,
                  "Add every sample off M (one tet size, the voxel's) instead of graded spacing")
         ->excludes(size)
@@ -139,6 +148,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.tet_size = o->tet_size;
         mo.tet_grading = o->grading;
         mo.facet_angle_deg = o->facet_angle;
+        mo.tet_min_dihedral_deg = o->tet_min_dihedral;
+        mo.tet_max_dihedral_deg = o->tet_max_dihedral;
         mo.adaptive = o->adaptive;
         mo.adaptive_share = o->adaptive_share;
         mo.adaptive_k = o->adaptive_k;

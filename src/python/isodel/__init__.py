@@ -112,7 +112,8 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
          progress: Optional[ProgressCallback] = None, grid: str = "", snap: bool = False,
          improve_tets: bool = True, facet_angle_deg: float = 0.0, block_voxels: int = 0,
          max_rounds: int = 2000, max_points: int = 0, tet_spacing: str = "graded",
-         tet_size: float = 0.0, tet_grading: float = 0.5) -> Mesh:
+         tet_size: float = 0.0, tet_grading: float = 0.5, tet_min_dihedral_deg: float = 0.0,
+         tet_max_dihedral_deg: float = 180.0) -> Mesh:
     """Mesh the level set {F = iso} of a volume, with guarantees (as `isodel mesh`).
 
     volume: a 3-d numpy array (any float or integer dtype; read in place, not copied first), a
@@ -131,6 +132,8 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
         distance, so the tet count follows the surface) or "uniform" (every sample).
     tet_size, tet_grading: graded spacing: the largest spacing in world units (0 = 8 voxels) and
         its growth per voxel of distance from M (as the CLI's --tet-size, --grading).
+    tet_min_dihedral_deg, tet_max_dihedral_deg: the range the tets M pins down are freed to
+        (as the CLI's --tet-min-dihedral, --tet-max-dihedral; default 0 and 180: off).
     adaptive: certified adaptive meshing (coarse cells where a certificate allows; dense input).
     threads: worker threads (None = all); the mesh does not depend on it.
     certify: verify the mesh before returning it; GuaranteeViolated if it fails.
@@ -163,6 +166,8 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
     args.block_voxels = int(block_voxels)
     args.max_points = int(max_points)
     args.facet_angle_deg = float(facet_angle_deg)
+    args.tet_min_dihedral_deg = float(tet_min_dihedral_deg)
+    args.tet_max_dihedral_deg = float(tet_max_dihedral_deg)
     raw = _isodel.mesh(_volume_arg(volume), args, _triple("spacing", spacing), _triple("origin", origin),
                        axis_order, grid, _progress_arg(progress))
     return Mesh(raw)
