@@ -109,6 +109,13 @@ struct MeshOptions {
     /// With block_voxels: the processes the blocks are spread over (block_transport.h), or null
     /// for this process's threads. Not with tets.
     BlockTransport* transport = nullptr;
+    /// With block_voxels: hold at most one block per thread in memory. After each pass a block
+    /// keeps only its owned facets and its points and frees its triangulation; when a
+    /// neighbour's points arrive it is built again from E, G and its points and checked again
+    /// in full. Lowers the peak memory of the processes holding several blocks, at the cost of
+    /// the rebuilds. The full checks may insert other points than the kept block's incremental
+    /// ones (the same guarantees); the mesh does not depend on the thread or process count.
+    bool release_blocks = false;
     /// Check the surface with isodel's verifier (include/isodel/verify.h: topology against an
     /// independent computation of Sigma's, the eps bound, a closed oriented 2-manifold without
     /// self-intersections, Delaunay conformity) before returning it; when it fails,

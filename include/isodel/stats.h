@@ -26,6 +26,7 @@ struct PartitionStats {
     int collar_growths = 0;               ///< times the collar grew (an owned facet's ball left its block)
     int exchange_rounds = 0;              ///< rounds of point exchange until no block inserted a point
     std::size_t exchanged_points = 0;     ///< points a block received that were new to it (summed)
+    std::size_t block_rebuilds = 0;       ///< MeshOptions::release_blocks: blocks built again from their points
     std::size_t block_points = 0;         ///< N points the blocks inserted
     std::size_t seam_points = 0;          ///< with tetrahedra: N points the merged triangulation added
     int processes = 1;                    ///< processes the blocks ran on (MeshOptions::transport)

@@ -66,7 +66,7 @@ struct MeshArgs {
     std::optional<std::string> inside, tets;
     std::string tet_spacing = "graded";
     double tet_size = 0, tet_grading = 0.5;
-    bool adaptive = false, certify = false, snap = false, improve_tets = true;
+    bool adaptive = false, certify = false, snap = false, improve_tets = true, release_blocks = false;
     std::optional<int> threads;
     int max_rounds = 2000, block_voxels = 0;
     std::size_t max_points = 0;
@@ -89,6 +89,7 @@ MeshOptions mesh_options(const MeshArgs& a)
     mo.snap = a.snap;
     mo.certify = a.certify;
     mo.block_voxels = a.block_voxels;
+    mo.release_blocks = a.release_blocks;
     mo.tets = parse_tets(a.tets);
     mo.improve_tets = a.improve_tets;
     if (a.tet_spacing != "graded" && a.tet_spacing != "uniform")
@@ -336,6 +337,7 @@ PYBIND11_MODULE(_isodel, m)
         .def_readwrite("threads", &MeshArgs::threads)
         .def_readwrite("max_rounds", &MeshArgs::max_rounds)
         .def_readwrite("block_voxels", &MeshArgs::block_voxels)
+        .def_readwrite("release_blocks", &MeshArgs::release_blocks)
         .def_readwrite("max_points", &MeshArgs::max_points)
         .def_readwrite("facet_angle_deg", &MeshArgs::facet_angle_deg)
         .def_readwrite("tet_min_dihedral_deg", &MeshArgs::tet_min_dihedral_deg)

@@ -41,15 +41,54 @@ BlockMesher::BlockMesher(const octree::SampleField& field, const BlockSpec& bloc
     // eps in world units of the whole field, so that every block refines to the same bound.
     if (options_.eps <= 0) options_.eps = options.eps_voxels * field.min_voxel_edge();
     st_.effective_isovalue = field.effective_isovalue();
+    interrupter_ = interrupter;
+    build(interrupter);
+}
+
+void BlockMesher::build(Interrupter* interrupter)
+{
     FieldRun run;
-    run.field = &field;
+    run.field = field_;
     run.point_box = &box_;
+    run.seeds = seeds_;
     CandidateFilter keep = [this](const Point& p) { return owns({p.x(), p.y(), p.z()}); };
     CandidateFilter near = [this](const Point& p) { return near_own({p.x(), p.y(), p.z()}); };
+    // A rebuild counts E, G, the tube points and the seeds again: they were counted the first time.
+    const MeshStats before = st_;
     pipeline_ = std::make_unique<SurfacePipeline>(run, options_, std::move(keep), std::move(near), st_, interrupter);
+    if (built_) {
+        st_.e_points = before.e_points;
+        st_.g_points = before.g_points;
+        st_.snapped = before.snapped;
+        st_.n_topology = before.n_topology;
+        st_.n_geometry = before.n_geometry;
+    }
+    built_ = true;
     if (pipeline_->empty()) return;
     next_unsent_ = pipeline_->first_inserted();
     pipeline_->refiner().measure_voxel_bound();
+}
+
+void BlockMesher::park()
+{
+    if (parked_ || empty()) return;
+    if (!counted_) {
+        own_e_ = own_edge_points();
+        own_g_ = own_grid_points();
+        counted_ = true;
+    }
+    unsent_ = take_new_points();
+    parked_surface_ = compute_owned_surface();
+    std::vector<std::pair<std::uint32_t, SeedPoint>> later;
+    const Delaunay& dt = pipeline_->dt();
+    const std::uint32_t first = pipeline_->first_inserted();
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        if (v->info().id >= first)
+            later.push_back({v->info().id, SeedPoint{{v->point().x(), v->point().y(), v->point().z()}, v->info().kind}});
+    std::sort(later.begin(), later.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [id, seed] : later) seeds_.push_back(seed);
+    pipeline_.reset();
+    parked_ = true;
 }
 
 openvdb::Vec3d BlockMesher::index_of(const Point& p) const
@@ -84,12 +123,13 @@ bool BlockMesher::near_own(const std::array<double, 3>& w) const
 
 void BlockMesher::refine()
 {
-    if (!empty()) stalled_ = !pipeline_->refiner().run(true);
+    if (!empty() && !parked_) stalled_ = !pipeline_->refiner().run(true);
 }
 
 std::vector<SeedPoint> BlockMesher::take_new_points()
 {
     std::vector<std::pair<std::uint32_t, SeedPoint>> fresh;
+    if (parked_) return std::move(unsent_);
     if (empty()) return {};
     const Delaunay& dt = pipeline_->dt();
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
@@ -112,6 +152,12 @@ std::size_t BlockMesher::receive(const std::vector<SeedPoint>& points)
     std::vector<std::pair<Point, PointKind>> mine;
     for (const SeedPoint& s : points)
         if (reads(s.p)) mine.emplace_back(Point(s.p[0], s.p[1], s.p[2]), s.kind);
+    if (mine.empty()) return 0;
+    if (parked_) {
+        build(interrupter_);
+        parked_ = false;
+        ++rebuilds_;
+    }
     const std::size_t added = pipeline_->refiner().insert_received(mine);
     next_unsent_ = pipeline_->refiner().next_id(); // what it received is not its own to hand out
     return added;
@@ -131,6 +177,11 @@ bool BlockMesher::ball_trusted(const Cell_handle& c) const
 }
 
 BlockSurface BlockMesher::owned_surface() const
+{
+    return parked_ ? parked_surface_ : compute_owned_surface();
+}
+
+BlockSurface BlockMesher::compute_owned_surface() const
 {
     BlockSurface out;
     if (empty()) return out;
@@ -173,12 +224,14 @@ std::size_t BlockMesher::count_own(Counted counted) const
 
 std::size_t BlockMesher::own_edge_points() const
 {
+    if (counted_) return own_e_;
     return count_own([](const VertexInfo& i) { return i.kind == PointKind::Edge || i.kind == PointKind::Snapped; });
 }
 
 std::size_t BlockMesher::own_grid_points() const
 {
     // G as the first triangulation had it: the repairs come later, and are counted apart.
+    if (counted_) return own_g_;
     const std::uint32_t first = pipeline_ ? pipeline_->first_inserted() : 0;
     return count_own([first](const VertexInfo& i) { return i.kind == PointKind::Grid && i.id < first; });
 }

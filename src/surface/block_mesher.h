@@ -47,7 +47,7 @@ public:
 
     const BlockSpec& spec() const { return spec_; }
     /// Sigma crosses no grid edge of the box: no triangulation, nothing to own.
-    bool empty() const { return !pipeline_ || pipeline_->empty(); }
+    bool empty() const { return !parked_ && (!pipeline_ || pipeline_->empty()); }
     /// Is the world point \p w among the samples this block reads (its box)?
     bool reads(const std::array<double, 3>& w) const;
     /// Is the world point \p w in the block's own region?
@@ -70,12 +70,25 @@ public:
     std::size_t receive(const std::vector<SeedPoint>& points);
     /// The restricted facets it owns (see the file comment).
     BlockSurface owned_surface() const;
+    /// MeshOptions::release_blocks: frees the triangulation and its records, keeping what the
+    /// run still needs of it (the owned facets, the own E and G counts, the points it inserted or
+    /// received). A later receive() of new points builds it again from E, G and those points
+    /// (the same point set, so the same triangulation, whose refiner then checks every element
+    /// again) and goes on from there. The points not handed out yet are kept for
+    /// take_new_points().
+    void park();
+    bool parked() const { return parked_; }
+    /// How many times park()'s block was built again.
+    std::size_t rebuilds() const { return rebuilds_; }
     /// Its counts: inserted points (all in its own region), E and G in its own region.
     const MeshStats& stats() const { return st_; }
     std::size_t own_edge_points() const;
     std::size_t own_grid_points() const;
 
 private:
+    /// Steps 1-3 on the box with seeds_ as seeds, then the voxel bound (the constructor's work).
+    void build(Interrupter* interrupter);
+    BlockSurface compute_owned_surface() const;
     bool ball_trusted(const Cell_handle& c) const;
     /// Vertices in the own region whose info \p counted accepts.
     template <class Counted>
@@ -92,6 +105,17 @@ private:
     openvdb::Vec3d ball_axis_scale_;           ///< index-axis extent of a world ball of radius 1
     std::uint32_t next_unsent_ = 0;            ///< ids from here on not handed out yet
     bool stalled_ = false;
+    Interrupter* interrupter_ = nullptr;
+    /// park(): the points beyond E and G (inserted, received, repairs of G) in the order they
+    /// came, the seeds of the next build; the owned facets and own counts while parked.
+    std::vector<SeedPoint> seeds_;
+    std::vector<SeedPoint> unsent_; ///< while parked: take_new_points()'s answer
+    bool parked_ = false;
+    bool built_ = false; ///< a later build() is a rebuild: its counts of E, G and seeds are not new
+    std::size_t rebuilds_ = 0;
+    BlockSurface parked_surface_;
+    bool counted_ = false; ///< own_e_ and own_g_ hold the first triangulation's counts
+    std::size_t own_e_ = 0, own_g_ = 0;
 };
 
 } // namespace isodel::mesher

@@ -167,6 +167,8 @@ void check_mesh_options(const MeshOptions& o)
     if (o.block_voxels < 0 || (o.block_voxels > 0 && o.block_voxels < kMinBlockVoxels))
         refuse("block_voxels must be 0 (off) or at least " + std::to_string(kMinBlockVoxels) +
                " (smaller blocks mesh their collars over and over; got " + std::to_string(o.block_voxels) + ")");
+    if (o.release_blocks && o.block_voxels == 0)
+        refuse("release_blocks needs block_voxels: without blocks there is nothing to release");
     // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
     if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
         refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");

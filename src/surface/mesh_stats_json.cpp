@@ -46,6 +46,7 @@ std::string to_json(const MeshStats& s)
                           {"collar_growths", p.collar_growths},
                           {"exchange_rounds", p.exchange_rounds},
                           {"exchanged_points", p.exchanged_points},
+                          {"block_rebuilds", p.block_rebuilds},
                           {"processes", p.processes},
                           {"max_process_peak_memory_bytes", p.max_process_peak_memory_bytes},
                           {"block_points", p.block_points},

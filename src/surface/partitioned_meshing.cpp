@@ -218,7 +218,7 @@ std::vector<std::vector<SeedPoint>> gather_new_points(Blocks& blocks, const Bloc
 /// \p inserted collects the N points the blocks inserted, round by round in block order.
 int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const std::array<int, 3>& reach,
                     const BlockRanks& ranks, SharedInterrupter& shared, PartitionStats& ps,
-                    std::vector<SeedPoint>& inserted)
+                    std::vector<SeedPoint>& inserted, bool release)
 {
     const std::size_t n = blocks.size();
     std::vector<std::vector<std::size_t>> near(n);
@@ -251,11 +251,20 @@ int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const s
             if (inbox[j].empty()) return;
             added[j] = blocks[j]->receive(inbox[j]);
             if (added[j]) blocks[j]->refine();
+            if (release) blocks[j]->park();
         });
         double mine = 0;
         for (std::size_t a : added) mine += double(a);
         ps.exchanged_points += std::size_t(ranks.sum(mine));
     }
+}
+
+/// MeshOptions::release_blocks: the rebuilds of every process's blocks.
+std::size_t count_rebuilds(const Blocks& blocks, const BlockRanks& ranks)
+{
+    double mine = 0;
+    for (std::size_t i : ranks.mine(blocks.size())) mine += double(blocks[i]->rebuilds());
+    return std::size_t(ranks.sum(mine));
 }
 
 /// The run's counts from all blocks of all processes: each inserted point and each own-region
@@ -326,15 +335,20 @@ bool assemble_everywhere(Blocks& blocks, const BlockRanks& ranks, SharedInterrup
     }
     refused = std::size_t(ranks.sum(mine_refused));
     if (refused) return false;
-    const std::vector<double> all = ranks.gather_to_first(mine);
+    std::vector<double> all = ranks.gather_to_first(mine);
+    std::vector<double>().swap(mine);
     double closed = 0; // the first process's verdict, shared by the sum
     if (ranks.first()) {
         // In block order, whichever process meshed the block: the same mesh for any count.
         std::vector<BlockSurface> joined(n);
+        std::vector<std::size_t> count(n, 0); // reserved, so that no list grows by doubling
+        for (std::size_t k = 0; k + 9 < all.size(); k += 10) ++count[std::size_t(all[k])];
+        for (std::size_t i = 0; i < n; ++i) joined[i].triangles.reserve(count[i]);
         for (std::size_t k = 0; k + 9 < all.size(); k += 10)
             joined[std::size_t(all[k])].triangles.push_back(WorldTriangle{{{all[k + 1], all[k + 2], all[k + 3]},
                                                                            {all[k + 4], all[k + 5], all[k + 6]},
                                                                            {all[k + 7], all[k + 8], all[k + 9]}}});
+        std::vector<double>().swap(all); // the first process holds the whole mesh: one copy at a time
         closed = assemble_surface(joined, mesh) ? 1 : 0;
     }
     return ranks.sum(closed) == 1;
@@ -376,10 +390,13 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
             for_my_blocks(ranks, n, shared, [&](std::size_t i) {
                 blocks[i] = std::make_unique<BlockMesher>(field, specs[i], options, margin, interrupters[i].get());
                 blocks[i]->refine();
+                if (options.release_blocks) blocks[i]->park();
             });
-            ps.exchange_rounds = exchange_points(blocks, specs, reach, ranks, shared, ps, inserted);
+            ps.exchange_rounds =
+                exchange_points(blocks, specs, reach, ranks, shared, ps, inserted, options.release_blocks);
         }
         sum_block_stats(blocks, ranks, st);
+        ps.block_rebuilds = count_rebuilds(blocks, ranks);
         // A block whose last pass stopped on violations of its own region whose points are
         // vertices already cannot certify them: as in one run, the guarantee fails.
         std::vector<double> stalled;

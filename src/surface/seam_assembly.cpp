@@ -13,14 +13,19 @@ namespace isodel::mesher {
 bool assemble_surface(const std::vector<BlockSurface>& parts, SurfaceMesh& mesh)
 {
     mesh = SurfaceMesh();
-    std::map<std::array<double, 3>, std::int32_t> index;
-    const auto vertex = [&](const std::array<double, 3>& p) {
-        const auto [it, fresh] = index.emplace(p, std::int32_t(mesh.vertices.size()));
-        if (fresh) mesh.vertices.push_back(p);
-        return it->second;
-    };
-    for (const BlockSurface& part : parts)
-        for (const WorldTriangle& t : part.triangles) mesh.triangles.push_back({vertex(t[0]), vertex(t[1]), vertex(t[2])});
+    {
+        // Scoped: the map goes before the edge list below is built (the first process holds the
+        // whole mesh here, and its peak memory is the run's).
+        std::map<std::array<double, 3>, std::int32_t> index;
+        const auto vertex = [&](const std::array<double, 3>& p) {
+            const auto [it, fresh] = index.emplace(p, std::int32_t(mesh.vertices.size()));
+            if (fresh) mesh.vertices.push_back(p);
+            return it->second;
+        };
+        for (const BlockSurface& part : parts)
+            for (const WorldTriangle& t : part.triangles)
+                mesh.triangles.push_back({vertex(t[0]), vertex(t[1]), vertex(t[2])});
+    }
 
     // Closed and consistently oriented: each directed edge once, and its reverse once.
     std::vector<std::pair<std::int32_t, std::int32_t>> directed;

@@ -57,6 +57,25 @@ TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verif
         CHECK(s.at("partition").at("processes").get<int>() == np);
         CHECK(s.at("topology").at("components").get<int>() == 1);
     }
+    // --release-blocks (one block alive per thread, rebuilt when points arrive): 2 processes
+    // write the thread engine's mesh with the same option, and it verifies.
+    const std::string released_threads = tmp / "released_threads.ply", released = tmp / "released.ply";
+    const RunResult rt = run_isodel("mesh " + shell_quote(torus) + common + " --threads 2 --release-blocks -o " +
+                                        shell_quote(released_threads),
+                                    tmp.path());
+    INFO(rt.err);
+    REQUIRE(rt.status == 0);
+    const RunResult r = run_mpi(2, "mesh " + shell_quote(torus) + common + " --threads 1 --release-blocks -o " +
+                                       shell_quote(released),
+                                tmp.path());
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK(read_text(released) == read_text(released_threads));
+    const RunResult rv = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.25 --mesh " +
+                                        shell_quote(released),
+                                    tmp.path());
+    INFO(rv.out << rv.err);
+    CHECK(rv.status == 0);
 #endif
 }
 

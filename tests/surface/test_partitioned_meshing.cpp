@@ -24,9 +24,11 @@ openvdb::FloatGrid::Ptr torus_grid()
     });
 }
 
-MeshResult mesh_blocks(const openvdb::FloatGrid& grid, int block_voxels, double eps_voxels, int threads = 0)
+MeshResult mesh_blocks(const openvdb::FloatGrid& grid, int block_voxels, double eps_voxels, int threads = 0,
+                       bool release = false)
 {
     MeshOptions mo;
+    mo.release_blocks = release;
     mo.isovalue = 0.0;
     mo.inside = Inside::Above;
     mo.eps_voxels = eps_voxels;
@@ -135,6 +137,39 @@ TEST_CASE("partitioned meshing gives the same mesh with 1 and 2 threads", "[mesh
     CHECK(a.surface.vertices == b.surface.vertices);
     CHECK(a.surface.triangles == b.surface.triangles);
     CHECK(a.stats.partition.block_points == b.stats.partition.block_points);
+}
+
+TEST_CASE("released blocks are rebuilt from their points, the same at 1 and 2 threads, and verify",
+          "[mesher][partition][release_blocks]")
+{
+    // MeshOptions::release_blocks frees each block's triangulation after each pass and builds it
+    // again from E, G and its points when a neighbour's arrive. The rebuilt block checks every
+    // element again where the kept one checks what changed, so the two may insert different
+    // points (the same guarantees); the run is still a function of the blocks alone.
+    const auto grid = torus_grid();
+    for (const int b : {8, 12}) {
+        INFO("B = " << b);
+        const MeshResult kept = mesh_blocks(*grid, b, 0.5, 2);
+        REQUIRE(kept.stats.partition.exchanged_points > 0); // or nothing is rebuilt
+        CHECK(kept.stats.partition.block_rebuilds == 0);
+        const MeshResult one = mesh_blocks(*grid, b, 0.5, 1, true);
+        const MeshResult two = mesh_blocks(*grid, b, 0.5, 2, true);
+        CHECK(two.stats.partition.block_rebuilds > 0);
+        CHECK(one.stats.partition.block_rebuilds == two.stats.partition.block_rebuilds);
+        CHECK(one.surface.vertices == two.surface.vertices);
+        CHECK(one.surface.triangles == two.surface.triangles);
+        // E and G come from the field, whatever happens to the blocks.
+        CHECK(two.stats.e_points == kept.stats.e_points);
+        CHECK(two.stats.g_points == kept.stats.g_points);
+        const VerifyReport rep = verify(*grid, two.surface, 0.5);
+        INFO(rep.summary());
+        CHECK(rep.passed());
+        REQUIRE(two.stats.components.size() == 1);
+        CHECK(two.stats.components[0].genus == 1);
+    }
+    MeshOptions mo;
+    mo.release_blocks = true; // without blocks
+    CHECK_THROWS_WITH(mesh_isosurface(*grid, mo), Catch::Contains("release_blocks"));
 }
 
 TEST_CASE("partitioned meshing refuses adaptive grids and bad block sizes", "[mesher][partition]")

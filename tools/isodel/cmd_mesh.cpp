@@ -28,6 +28,7 @@ struct MeshCliOptions {
     bool trace = false;
     bool snap = false;
     bool certify = false;
+    bool release_blocks = false;
     bool no_improve = false;
     bool uniform_tets = false;
     double tet_size = 0, grading = 0.5;
@@ -101,6 +102,9 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                     "Partitioned meshing (paper Fig. 8): blocks of this many voxels per axis, meshed "
                     "concurrently with protective collars, then merged (dense grids; 0 = off, else at least 4)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--release-blocks", o->release_blocks,
+                  "With --blocks: hold one block per thread in memory, rebuilding a block from its points when "
+                  "a neighbour's arrive (less memory per process, more time)");
     cmd->add_flag("--certify", o->certify,
                   "Verify the surface before writing it (topology against an independent computation, eps, "
                   "manifold, Delaunay); exit 1 and write nothing if it fails");
@@ -139,6 +143,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.snap = o->snap;
         mo.certify = o->certify;
         mo.block_voxels = o->blocks;
+        mo.release_blocks = o->release_blocks;
         if (!o->tets.empty())
             mo.tets = o->region == "both"      ? TetRegion::Both
                       : o->region == "outside" ? TetRegion::Outside
