@@ -244,6 +244,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                 for (auto n : t.dihedral_histogram)
                     std::cerr << ' ' << n;
                 std::cerr << "\n";
+                if (res.stats.tet_sliver_stop != TetSliverStop::Off)
+                    std::cerr << "  tets M pinned down: " << res.stats.n_tet_sliver << " points of the level set inserted in "
+                              << res.stats.tet_sliver_runs << " more runs (" << to_string(res.stats.tet_sliver_stop)
+                              << ")\n";
             }
         }
         exit_code = kOk;
