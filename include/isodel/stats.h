@@ -96,7 +96,7 @@ inline const char* to_string(FacetAngleStop stop)
 enum class TetSliverStop {
     Off,     ///< no tets, or no dihedral range
     Met,     ///< no tet with a face on M is out of the range
-    RunBound ///< the last of its runs still left some (their count is in MeshStats::tets)
+    RunBound ///< the last of its runs still left some
 };
 
 /// "" (Off), "met", "run bound": the words of the --stats JSON.

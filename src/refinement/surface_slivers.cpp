@@ -1,48 +1,21 @@
 #include "refinement/surface_slivers.h"
 
+#include "volume/tet_improver.h"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
 
 namespace isodel::mesher {
-namespace {
 
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
-
-using Vec = std::array<double, 3>;
-
-Vec minus(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec cross(const Vec& a, const Vec& b)
+std::pair<double, double> dihedral_range_deg(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                                             const std::array<double, 3>& c, const std::array<double, 3>& d)
 {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-} // namespace
-
-std::pair<double, double> dihedral_range_deg(const Vec& a, const Vec& b, const Vec& c, const Vec& d)
-{
-    // The dihedral angle at an edge is pi minus the angle between the outward normals of the
-    // two faces through it. A quality measure, not a decision about M: doubles suffice.
-    const std::array<Vec, 4> p{a, b, c, d};
-    std::array<Vec, 4> n;
-    for (int i = 0; i < 4; ++i) {
-        const Vec& x = p[(i + 1) & 3];
-        Vec m = cross(minus(p[(i + 2) & 3], x), minus(p[(i + 3) & 3], x));
-        const double s = dot(m, minus(p[i], x)) > 0 ? -1.0 : 1.0;
-        const double len = std::sqrt(std::max(dot(m, m), 1e-300));
-        for (double& v : m) v *= s / len;
-        n[i] = m;
-    }
-    double lo = 180, hi = 0;
-    for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) {
-            const double angle = 180.0 - kDegPerRad * std::acos(std::clamp(dot(n[i], n[j]), -1.0, 1.0));
-            lo = std::min(lo, angle);
-            hi = std::max(hi, angle);
-        }
-    return {lo, hi};
+    // A quality measure, not a decision about M: the improver's doubles suffice.
+    double lowest = 0, highest = 0;
+    if (!tet_improver::normal_dots(a, b, c, d, lowest, highest)) return {0.0, 180.0};
+    return {tet_improver::degrees(lowest), tet_improver::degrees(highest)};
 }
 
 std::vector<Point> surface_sliver_points(const TetMesh& tets, const std::vector<std::uint32_t>& vertex_ids,

@@ -65,6 +65,18 @@ void BlockMesher::build(Interrupter* interrupter)
     }
     built_ = true;
     if (pipeline_->empty()) return;
+    // G's repairs (own or a neighbour's) come back as seeds: G's mask holds them, as the kept
+    // block's did, so that a later repair does not add them again.
+    bool grid_seeds = false;
+    for (const SeedPoint& seed : seeds_) grid_seeds = grid_seeds || seed.kind == PointKind::Grid;
+    if (grid_seeds) {
+        auto acc = pipeline_->g_mask().get().getAccessor();
+        for (const SeedPoint& seed : seeds_) {
+            if (seed.kind != PointKind::Grid) continue;
+            const openvdb::Vec3d q = field_->world_to_index({seed.p[0], seed.p[1], seed.p[2]});
+            acc.setValueOn(openvdb::Coord(int(std::lround(q[0])), int(std::lround(q[1])), int(std::lround(q[2]))));
+        }
+    }
     next_unsent_ = pipeline_->first_inserted();
     pipeline_->refiner().measure_voxel_bound();
 }
@@ -153,6 +165,7 @@ std::size_t BlockMesher::receive(const std::vector<SeedPoint>& points)
     for (const SeedPoint& s : points)
         if (reads(s.p)) mine.emplace_back(Point(s.p[0], s.p[1], s.p[2]), s.kind);
     if (mine.empty()) return 0;
+    const bool rebuilt = parked_;
     if (parked_) {
         build(interrupter_);
         parked_ = false;
@@ -160,6 +173,12 @@ std::size_t BlockMesher::receive(const std::vector<SeedPoint>& points)
     }
     const std::size_t added = pipeline_->refiner().insert_received(mine);
     next_unsent_ = pipeline_->refiner().next_id(); // what it received is not its own to hand out
+    if (rebuilt && added == 0) {
+        // Nothing new: no refine() follows, so the rebuilt block's facet records were never
+        // computed. The parked state (facets, points) is still the block's: keep it.
+        pipeline_.reset();
+        parked_ = true;
+    }
     return added;
 }
 

@@ -130,9 +130,13 @@ MeshResult mesh_field_once(const FieldRun& run, const MeshOptions& options, Inte
                                                                   options.tet_max_dihedral_deg);
             fresh = free.size();
             if (!free.empty()) {
+                // This run's seeds, then the points its loop inserted (ids from first_inserted():
+                // the tube and shoulder points before them come back with E and G).
+                next_seeds = run.seeds;
                 std::vector<std::pair<std::uint32_t, SeedPoint>> n_points;
                 for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-                    if (v->info().kind == PointKind::Topology || v->info().kind == PointKind::Geometry)
+                    if (v->info().id >= pipeline.first_inserted() &&
+                        (v->info().kind == PointKind::Topology || v->info().kind == PointKind::Geometry))
                         n_points.push_back({v->info().id, {{v->point().x(), v->point().y(), v->point().z()}, v->info().kind}});
                 std::sort(n_points.begin(), n_points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
                 for (const auto& [id, seed] : n_points) next_seeds.push_back(seed);
@@ -158,12 +162,15 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         return result;
     // The bad tets M pins down (refinement/surface_slivers.h): the pipeline again with the
     // points that free them, every guarantee checked again, up to kMaxSliverRuns more runs.
-    std::size_t inserted = 0;
+    std::size_t inserted = 0, facet_angle_points = 0, seam_points = 0;
     double earlier_seconds = 0;
     int runs = 0;
     while (!next_seeds.empty() && runs < kMaxSliverRuns) {
         ++runs;
         inserted += fresh;
+        // A run's points are the next run's seeds: what each run added is summed.
+        facet_angle_points += result.stats.n_facet_angle;
+        seam_points += result.stats.partition.seam_points;
         earlier_seconds += result.stats.seconds["total"];
         FieldRun again = run;
         again.seeds = std::move(next_seeds);
@@ -171,6 +178,8 @@ MeshResult mesh_field(const FieldRun& run, const MeshOptions& options, Interrupt
         result = mesh_field_once(again, options, interrupter, next_seeds, fresh);
     }
     MeshStats& st = result.stats;
+    st.n_facet_angle += facet_angle_points;
+    st.partition.seam_points += seam_points;
     st.n_tet_sliver = inserted;
     st.tet_sliver_runs = runs;
     st.tet_sliver_stop = next_seeds.empty() ? TetSliverStop::Met : TetSliverStop::RunBound;

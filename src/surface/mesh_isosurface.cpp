@@ -177,6 +177,8 @@ void check_mesh_options(const MeshOptions& o)
         refuse("tet_min_dihedral_deg must be in [0, 70] (got " + num(o.tet_min_dihedral_deg) + ")");
     if (!(o.tet_max_dihedral_deg >= 71) || o.tet_max_dihedral_deg > 180)
         refuse("tet_max_dihedral_deg must be in [71, 180] (got " + num(o.tet_max_dihedral_deg) + ")");
+    if (o.tets == TetRegion::None && (o.tet_min_dihedral_deg > 0 || o.tet_max_dihedral_deg < 180))
+        refuse("tet_min_dihedral_deg and tet_max_dihedral_deg need tets: without them there is no tet to hold to the range");
     if (!(o.tet_grading > 0) || !std::isfinite(o.tet_grading))
         refuse("tet_grading must be a finite number > 0 (got " + num(o.tet_grading) + ")");
     if (!(o.tet_size >= 0) || !std::isfinite(o.tet_size))

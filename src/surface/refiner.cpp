@@ -115,9 +115,11 @@ void Refiner::measure_voxel_bound()
 {
     // Theorem 2, measured in parallel; the verdicts in vertex order. N points get the N bound.
     std::vector<Vertex_handle> measured;
+    // Geometry points are there before the loop only as seeds (a later run's or a merge's):
+    // they are measured too.
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
         if (v->info().kind == PointKind::Edge || v->info().kind == PointKind::Topology ||
-            v->info().kind == PointKind::Snapped)
+            v->info().kind == PointKind::Snapped || v->info().kind == PointKind::Geometry)
             measured.push_back(v);
     const std::vector<int> counts = voronoi_cell_counts(dt_, measured, *in_.field, in_.leaves);
     for (std::size_t i = 0; i < measured.size(); ++i)

@@ -39,7 +39,7 @@ inline int orient(const V3& a, const V3& b, const V3& c, const V3& d)
 
 
 /// The dot products of the faces' unit normals, smallest and largest: minus the cosines of the
-/// largest and the smallest of the six dihedral angles. The dihedral angle at edge (i, j) is the
+/// smallest and the largest of the six dihedral angles. The dihedral angle at edge (i, j) is the
 /// angle between the faces opposite k and l, the other two vertices: cos = -n_k . n_l / |n_k|
 /// |n_l| for the faces' outward (or all inward) normals. Four cross products instead of the
 /// twelve of two normals per edge: this is the improvement's innermost function (every trial

@@ -4,6 +4,9 @@
 // block size, identically for 1 and 2 threads.
 #include <catch2/catch.hpp>
 
+#include "octree/face_slabs.h"
+#include "octree/protective_layer.h"
+#include "surface/block_mesher.h"
 #include "surface/partitioned_meshing.h"
 #include "support/mesher_test_support.h"
 
@@ -170,6 +173,40 @@ TEST_CASE("released blocks are rebuilt from their points, the same at 1 and 2 th
     MeshOptions mo;
     mo.release_blocks = true; // without blocks
     CHECK_THROWS_WITH(mesh_isosurface(*grid, mo), Catch::Contains("release_blocks"));
+}
+
+TEST_CASE("a parked block rebuilt for points it has already keeps its owned facets",
+          "[mesher][partition][release_blocks]")
+{
+    // A rebuild whose received points are all vertices already is followed by no refine(), so
+    // its facet records are never computed: the block must go back to its parked state.
+    const auto g = torus_grid();
+    octree::SampleField field(g, 0.0, Inside::Above);
+    field.set_face_slabs(octree::face_slabs_for_eps(0.5));
+    MeshOptions mo;
+    mo.isovalue = 0.0;
+    mo.inside = Inside::Above;
+    mo.eps_voxels = 0.5;
+    mo.block_voxels = 12;
+    const std::array<int, 3> r = octree::layer_radius(field);
+    const int margin = *std::max_element(r.begin(), r.end()) + 2;
+    int tried = 0;
+    for (const auto& spec : mesher::partition_domain(field, 12, mesher::collar_voxels(field))) {
+        mesher::BlockMesher block(field, spec, mo, margin, nullptr);
+        if (block.empty()) continue;
+        block.refine();
+        const mesher::BlockSurface before = block.owned_surface();
+        const std::vector<mesher::SeedPoint> own = block.take_new_points();
+        if (before.triangles.empty() || own.empty()) continue;
+        ++tried;
+        block.park();
+        REQUIRE(block.parked());
+        CHECK(block.receive(own) == 0); // its own points: nothing new
+        CHECK(block.rebuilds() == 1);
+        CHECK(block.parked());
+        CHECK(block.owned_surface().triangles == before.triangles);
+    }
+    CHECK(tried > 0);
 }
 
 TEST_CASE("partitioned meshing refuses adaptive grids and bad block sizes", "[mesher][partition]")
