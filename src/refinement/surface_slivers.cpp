@@ -3,7 +3,6 @@
 #include "volume/tet_improver.h"
 
 #include <algorithm>
-#include <cmath>
 #include <unordered_map>
 #include <unordered_set>
 
