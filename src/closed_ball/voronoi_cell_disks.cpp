@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 
 namespace isodel::mesher {
@@ -42,17 +43,24 @@ public:
     {
     }
 
-    /// grad F' at p, index space (zero at a critical point on Sigma'). A snapped grid point
-    /// (--snap) lies in a corner box of the face slabs, where F' is constant: there the
-    /// direction to start from is grad F at the sample.
+    /// The direction to start from: grad F at phi(p), the normal of Sigma where p's preimage
+    /// lies, index space (zero at a critical point on Sigma). Not grad F' at p: p usually lies
+    /// in a slab (an E point on a grid edge lies in two of them, a snapped grid point in three),
+    /// where F' is constant across the slab's axis, so grad F' keeps only the other components
+    /// (an E point's: the edge's alone). Where Sigma' crosses a lattice plane normal to the
+    /// edge inside Vor(p), it is a wall in that plane's slab, parallel to the edge: a direction
+    /// along the edge fails there. A cell several voxels wide (coarse leaves) holds such walls,
+    /// and its run then spends the box budget (kMaxBoxes) before a later direction certifies it.
+    /// Any direction is sound (the certificate proves a graph over whatever d it is given);
+    /// grad F' is the fallback where grad F vanishes.
     Vec3d normal_at_p() const
     {
         const Vec3d pi = field_.world_to_index(p_);
         const Coord pc(int(std::floor(pi[0])), int(std::floor(pi[1])), int(std::floor(pi[2])));
         const octree::CellFunction cf = octree::cell_function(reader_, pc);
         const Vec3d l = pi - pc.asVec3d();
-        const Vec3d g = cf.gradient(l[0], l[1], l[2]);
-        return g.lengthSqr() > 0 ? g : cf.sample_gradient(l[0], l[1], l[2]);
+        const Vec3d g = cf.sample_gradient(l[0], l[1], l[2]);
+        return g.lengthSqr() > 0 ? g : cf.gradient(l[0], l[1], l[2]);
     }
 
     /// Runs the certificate for direction \p d on the index-space box [lo, hi] (the bounding
@@ -233,6 +241,7 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
     // a second pass over them, cold in the cache.)
     enum class Verdict { Certified, Sampled, Violated, Unresolved };
     std::vector<Verdict> verdict(pending.size(), Verdict::Certified);
+    std::vector<std::uint8_t> tried(pending.size(), 0); // directions per vertex
     std::vector<std::optional<Candidate>> found(pending.size());
     tbb::enumerable_thread_specific<octree::SampleField::Reader> readers([&] { return octree::SampleField::Reader(field); });
     struct Scratch {
@@ -272,6 +281,7 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
             bool certified = false;
             for (int k = 0; k < kDirections && !certified; ++k) {
                 cert.run(g.lo, g.hi, d);
+                ++tried[i];
                 certified = cert.settled();
                 if (certified || !cert.farthest_point()) break;
                 for (const Vec3d& n : cert.leaf_normals())
@@ -311,6 +321,7 @@ std::vector<Candidate> voronoi_cell_disk_violations(const Delaunay& dt, const oc
     std::vector<Vertex_handle> still;
     VoronoiCellDiskStats s;
     for (std::size_t i = 0; i < pending.size(); ++i) {
+        s.directions += tried[i];
         if (verdict[i] == Verdict::Certified || verdict[i] == Verdict::Sampled) {
             ++(verdict[i] == Verdict::Certified ? s.certified : s.sampled);
             continue;

@@ -47,6 +47,7 @@ struct VoronoiCellDiskStats {
     std::size_t sampled = 0;    ///< not certified, but Sigma n Vor(p) sampled has chi >= 0
     std::size_t unresolved = 0; ///< a handle (chi < 0) with no point of Sigma found to insert, or
                                 ///< in a cell smaller than min_extent
+    std::size_t directions = 0; ///< directions tried, over all vertices checked (each at least one)
 };
 
 /// Checks the surface vertices in \p pending (in order); returns one candidate per vertex whose

@@ -296,8 +296,8 @@ ViolationReport Refiner::cell_disks()
     VoronoiCellDiskStats ds;
     rep.candidates = voronoi_cell_disk_violations(dt_, *in_.field, disk_pending_, in_.slab_h_world, &ds);
     st_.refinement_seconds["cell_disks"] += seconds_since(t0);
-    log("  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated", 1e3 * seconds_since(t0), ds.certified,
-        ds.sampled, ds.unresolved, rep.candidates.size());
+    log("  disks %.2f ms: %zu certified, %zu by chi, %zu unresolved, %zu violated, %zu directions",
+        1e3 * seconds_since(t0), ds.certified, ds.sampled, ds.unresolved, rep.candidates.size(), ds.directions);
     filter_candidates(rep.candidates, in_.keep);
     if (!rep.candidates.empty()) rep.kind = Violation::VoronoiCellDisk;
     return rep;
