@@ -132,6 +132,12 @@ struct MeshOptions {
     double adaptive_share = 0.5; ///< share of eps the coarsening may spend, in (0, 1)
     int adaptive_k = 1;          ///< level difference of touching leaves, in [1, 4]
     int adaptive_max_level = 5;  ///< coarsest leaf 2^level voxels, in [0, 15]
+    /// The coarsening must pay for the share of eps it takes from the mesher: when the certified
+    /// octree removes less than this share of the input's grid-edge crossings (the E points,
+    /// and with them about as many closed-ball points), the surface is meshed on the input's
+    /// own grid with the whole eps instead, exactly as without adaptive (AdaptiveStats says
+    /// which). In [0, 1); 0 always meshes on the octree.
+    double adaptive_min_saving = 0.1;
 };
 
 struct AdaptiveVolume; // include/isodel/adaptive.h

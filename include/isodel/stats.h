@@ -65,11 +65,15 @@ struct TetStats {
 struct AdaptiveStats {
     bool used = false;
     double eps_coarsening_world = 0; ///< the coarsening's budget, adaptive_share x eps
-    double distance_world = 0;       ///< the largest certified distance (at most the budget)
+    double distance_world = 0;       ///< the largest certified distance (at most the budget); 0 when
+                                     ///< the surface was meshed on the input's grid
     double eps_meshing_world = 0;    ///< eps - distance_world: the mesher's bound to the coarse Sigma
     std::vector<std::uint64_t> leaves_per_level; ///< level 0 first
     std::size_t cells_certified = 0; ///< unit cells the certificate was required of
     std::size_t repair_rounds = 0, repair_splits = 0;
+    std::size_t e_uniform = 0;  ///< grid-edge crossings of the input's grid
+    std::size_t e_octree = 0;   ///< crossings of the octree's leaf edges
+    bool meshed_on_octree = false; ///< false: the octree saved too little (MeshOptions::adaptive_min_saving)
 };
 
 /// Why the triangle-quality pass (MeshOptions::facet_angle_deg) stopped.

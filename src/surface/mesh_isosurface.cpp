@@ -6,6 +6,8 @@
 #include "surface/final_points.h"
 #include "surface/mesh_field.h"
 #include "surface/partitioned_meshing.h"
+#include "seeding/adaptive_points.h"
+#include "octree/edge_crossings.h"
 #include "octree/adaptive_vdb_format.h"
 #include "octree/certified_coarsening.h"
 #include "octree/extended_level_set.h"
@@ -99,9 +101,22 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
     return r;
 }
 
+/// The crossings of the octree's leaf edges: the E points the mesher would start from on it
+/// (seeding/initial_points.cpp takes the same ones).
+std::size_t octree_edge_crossings(const octree::SampleField& coarse, const octree::AdaptiveGrid& g)
+{
+    const octree::EdgeCrossings e = octree::edge_crossings(coarse);
+    const octree::AdaptiveGrid::Reader leaves(g);
+    return std::size_t(std::count_if(e.points.begin(), e.points.end(),
+                                     [&](const octree::EdgePoint& p) { return on_leaf_edge(leaves, p.lower, p.axis); }));
+}
+
 // MeshOptions::adaptive: the certified grid (octree/certified_coarsening.h) spends at most
 // adaptive_share x eps; the mesher gets the rest against the coarse Sigma, at the input's level
 // v*. Then M ~ coarse Sigma ~ Sigma (isotopic) and d_H(M, Sigma) <= eps (docs/adaptive.md).
+// Where the octree keeps Sigma's cells fine, the share it took buys nothing and the mesher,
+// held to less than eps, adds points: below adaptive_min_saving fewer E points, the input's
+// own grid is meshed with the whole eps (the mesh is then exactly the non-adaptive one).
 MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
@@ -118,27 +133,36 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
     octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
     const octree::SampleField& coarse = *cg.field; // the coarse field, at the input's v*
+    const std::size_t e_uniform = octree::edge_crossings(fine).points.size();
+    const std::size_t e_octree = cg.grid.max_level() > 0 ? octree_edge_crossings(coarse, cg.grid) : e_uniform;
+    const bool on_octree = cg.grid.max_level() > 0 && (options.adaptive_min_saving == 0 ||
+                                                       double(e_octree) <= (1 - options.adaptive_min_saving) * double(e_uniform));
     const double t_grid = seconds_since(t0);
 
     MeshOptions mo = options;
     mo.adaptive = false;
     mo.certify = false;
-    mo.eps = eps - cg.distance_world;
-    MeshResult r = mesh_once(coarse, cg.grid.max_level() > 0 ? &cg.grid : nullptr, mo, interrupter, nullptr);
+    if (on_octree) mo.eps = eps - cg.distance_world; // else the options' own eps, as mesh_grid reads it
+    MeshResult r = on_octree ? mesh_once(coarse, &cg.grid, mo, interrupter, nullptr)
+                             : mesh_once(fine, nullptr, mo, interrupter, nullptr);
     AdaptiveStats& a = r.stats.adaptive;
     a.used = true;
+    a.meshed_on_octree = on_octree;
+    a.e_uniform = e_uniform;
+    a.e_octree = e_octree;
     a.eps_coarsening_world = budget.distance_world;
-    a.distance_world = cg.distance_world;
-    a.eps_meshing_world = mo.eps;
+    a.distance_world = on_octree ? cg.distance_world : 0.0;
+    a.eps_meshing_world = on_octree ? mo.eps : r.stats.eps_world;
     a.leaves_per_level = cg.grid.level_histogram();
     a.cells_certified = cg.cells_certified;
     a.repair_rounds = cg.rounds;
     a.repair_splits = cg.splits;
     r.stats.eps_world = eps;
     auto saved = std::make_shared<AdaptiveVolume>();
-    // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive.
-    saved->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(cg.grid.samples_ptr())->copy();
-    saved->levels = cg.grid.masks();
+    // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive. Meshed
+    // on the input's grid, the grid saved is that one: no coarse levels.
+    saved->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(on_octree ? cg.grid.samples_ptr() : gptr)->copy();
+    if (on_octree) saved->levels = cg.grid.masks();
     saved->domain = cg.grid.domain();
     saved->k = cg.grid.k();
     saved->source = "isodel mesh --adaptive";
@@ -188,6 +212,8 @@ void check_mesh_options(const MeshOptions& o)
     if (o.adaptive_k < 1 || o.adaptive_k > 4) refuse("adaptive_k must be in [1, 4] (got " + std::to_string(o.adaptive_k) + ")");
     if (o.adaptive_max_level < 0 || o.adaptive_max_level > 15)
         refuse("adaptive_max_level must be in [0, 15] (got " + std::to_string(o.adaptive_max_level) + ")");
+    if (!(o.adaptive_min_saving >= 0 && o.adaptive_min_saving < 1))
+        refuse("adaptive_min_saving must be in [0, 1) (got " + num(o.adaptive_min_saving) + ")");
     if (o.adaptive && o.block_voxels > 0)
         refuse("adaptive meshing cannot be combined with partitioned meshing (block_voxels) yet");
     if (o.transport && o.block_voxels == 0) refuse("a transport (several processes) needs block_voxels > 0");

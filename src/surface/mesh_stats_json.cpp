@@ -60,7 +60,10 @@ std::string to_json(const MeshStats& s)
                          {"leaves_per_level", a.leaves_per_level},
                          {"cells_certified", a.cells_certified},
                          {"repair_rounds", a.repair_rounds},
-                         {"repair_splits", a.repair_splits}};
+                         {"repair_splits", a.repair_splits},
+                         {"E_uniform", a.e_uniform},
+                         {"E_octree", a.e_octree},
+                         {"meshed_on", a.meshed_on_octree ? "octree" : "input grid"}};
     }
     if (s.certify_attempts > 0) o["certify_attempts"] = s.certify_attempts;
     const TetStats& t = s.tets;

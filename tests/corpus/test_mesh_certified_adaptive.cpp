@@ -37,6 +37,7 @@ TEST_CASE("adaptive meshing of the shared volumes verifies against the original 
             mo.inside = testing::inside_of(e);
             mo.eps_voxels = eps;
             mo.adaptive = true;
+            mo.adaptive_min_saving = 0; // always on the octree: the certificate is what is tested
             testing::MeshAndVerify r;
             try {
                 r = testing::mesh_and_verify(*grid, mo);
@@ -50,6 +51,7 @@ TEST_CASE("adaptive meshing of the shared volumes verifies against the original 
             if (testing::json_has(e, "expected_topology") && testing::json_has(e.at("expected_topology"), "genus"))
                 CHECK(r.genera == testing::expected_genera(e));
             const AdaptiveStats& a = r.mesh.stats.adaptive;
+            CHECK(a.meshed_on_octree == (a.leaves_per_level.size() > 1));
             CHECK(a.distance_world <= a.eps_coarsening_world);
             CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
             CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);

@@ -45,6 +45,7 @@ void run_property(Mode mode, int default_count = 1000)
         mo.eps_voxels = 0.5;
         mo.snap = mode == Mode::Snap;
         mo.adaptive = mode == Mode::Adaptive;
+        mo.adaptive_min_saving = 0; // on the octree whenever it has coarse leaves
         MeshResult res;
         try {
             res = mesh_isosurface(*grid, mo);

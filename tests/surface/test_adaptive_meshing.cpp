@@ -103,6 +103,7 @@ TEST_CASE("adaptive meshing: a handle, a blob and a neck smaller than a coarse c
         for (int threads : {1, 2}) {
             MeshOptions mo = options(0.5);
             mo.adaptive = true;
+            mo.adaptive_min_saving = 0; // on the octree: the certificate is what is tested
             mo.threads = threads;
             const auto r = testing::mesh_and_verify(*grid, mo);
             INFO("threads " << threads << "\n" << r.report.summary());
@@ -110,6 +111,7 @@ TEST_CASE("adaptive meshing: a handle, a blob and a neck smaller than a coarse c
             CHECK(r.genera == f.genera);
             const AdaptiveStats& a = r.mesh.stats.adaptive;
             CHECK(a.used);
+            CHECK(a.meshed_on_octree);
             CHECK(a.leaves_per_level.size() >= 3); // coarse cells elsewhere
             CHECK(a.distance_world <= a.eps_coarsening_world);
             CHECK(a.eps_meshing_world == Approx(0.5 - a.distance_world));
@@ -122,6 +124,7 @@ TEST_CASE("adaptive meshing: the same mesh at 1 and 2 threads, refused combinati
     const auto grid = scene(features()[1]);
     MeshOptions mo = options(0.5);
     mo.adaptive = true;
+    mo.adaptive_min_saving = 0;
     mo.threads = 1;
     const MeshResult one = mesh_isosurface(*grid, mo);
     mo.threads = 2;
@@ -136,6 +139,11 @@ TEST_CASE("adaptive meshing: the same mesh at 1 and 2 threads, refused combinati
     MeshOptions share = mo;
     share.adaptive_share = 1.0;
     CHECK_THROWS_AS(check_mesh_options(share), InvalidInput);
+    for (double saving : {-0.1, 1.0}) {
+        MeshOptions bad = mo;
+        bad.adaptive_min_saving = saving;
+        CHECK_THROWS_AS(check_mesh_options(bad), InvalidInput);
+    }
     DecimateOptions d;
     d.tolerance = 0.01;
     CHECK_THROWS_AS(mesh_isosurface(decimate(*grid, d).volume, mo), InvalidInput);

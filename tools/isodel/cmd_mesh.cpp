@@ -37,6 +37,7 @@ struct MeshCliOptions {
     bool adaptive = false;
     double adaptive_share = 0.5;
     int adaptive_k = 1, adaptive_max_level = 5;
+    double adaptive_min_saving = 0.1;
     std::string adaptive_grid;
 };
 
@@ -120,6 +121,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
     cmd->add_option("--adaptive-max-level", o->adaptive_max_level,
                     "--adaptive: coarsest cell, 2^level voxels (default 5)")
         ->check(CLI::Range(0, 15));
+    cmd->add_option("--adaptive-min-saving", o->adaptive_min_saving,
+                    "--adaptive: mesh the input's own grid with the whole eps when the octree removes less than "
+                    "this share of its grid-edge crossings (default 0.1; 0: always the octree)")
+        ->check(CLI::Range(0.0, 0.999999));
     cmd->add_option("--adaptive-grid", o->adaptive_grid,
                     "--adaptive: also write the certified octree (.vdb, as isodel decimate writes), so that "
                     "isodel verify can check the surface against its interpolant too");
@@ -159,6 +164,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.adaptive_share = o->adaptive_share;
         mo.adaptive_k = o->adaptive_k;
         mo.adaptive_max_level = o->adaptive_max_level;
+        mo.adaptive_min_saving = o->adaptive_min_saving;
         check_mesh_options(mo); // before any work
         if (!o->adaptive_grid.empty() && !mo.adaptive)
             throw InvalidInput("--adaptive-grid " + o->adaptive_grid +
