@@ -326,6 +326,46 @@ std::vector<Coord> cells_to_certify(const AdaptiveGrid& g, const SampleField& fi
     return out;
 }
 
+std::size_t crossings_coarse_leaves_could_remove(const SampleField& fine, const std::vector<EdgePoint>& e,
+                                                 const std::vector<Coord>& crossed_cells,
+                                                 const CoarseningBudget& budget)
+{
+    if (budget.max_level < 1) return 0;
+    std::vector<Coord> parents;
+    parents.reserve(crossed_cells.size());
+    for (const Coord& c : crossed_cells) parents.push_back(align_down(c, 1));
+    std::sort(parents.begin(), parents.end());
+    parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+    const auto edges = voxel_edges(fine);
+    std::vector<char> ok(parents.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, parents.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        const SampleField::Reader f(fine);
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const CellId p{parents[i], 1};
+            CoordBBox span(p.origin, p.origin.offsetBy(2));
+            ok[i] = fine.domain().isInside(span) && parent_certified(f, f, p, edges, budget.distance_world);
+        }
+    });
+    const auto accepted = [&](const Coord& cell) {
+        const auto it = std::lower_bound(parents.begin(), parents.end(), align_down(cell, 1));
+        return it != parents.end() && *it == align_down(cell, 1) && ok[std::size_t(it - parents.begin())];
+    };
+    std::size_t n = 0;
+    for (const EdgePoint& p : e) {
+        // The four unit cells around the edge.
+        const int b = (p.axis + 1) % 3, c = (p.axis + 2) % 3;
+        bool removable = false;
+        for (int q = 0; q < 4 && !removable; ++q) {
+            Coord u = p.lower;
+            u[b] -= q & 1;
+            u[c] -= (q >> 1) & 1;
+            removable = accepted(u);
+        }
+        n += removable;
+    }
+    return n;
+}
+
 CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudget& budget, Interrupter* intr,
                                    openvdb::FloatGrid::ConstPtr corner_samples)
 {

@@ -26,6 +26,7 @@
 /// cells keep phi_t = phi_f. So {phi_f = 0} and {phi_a = 0} are isotopic, and the Hausdorff
 /// distance between them is at most the largest certified distance (docs/adaptive.md).
 #include "octree/adaptive_grid.h"
+#include "octree/edge_crossings.h"
 #include "octree/sample_field.h"
 
 #include <isodel/interrupt.h>
@@ -67,6 +68,17 @@ std::array<double, 3> voxel_edges(const SampleField& field);
 /// voxel_edges, \p budget_world the distance allowed.
 CellCertificate certify_cell(const SampleField::Reader& f, const SampleField::Reader& a, const Coord& u,
                              const std::array<double, 3>& edges, double budget_world);
+
+/// Before building: of the input's grid-edge crossings \p e, those on an edge with a crossed unit
+/// cell beside it whose level-1 parent (its 2^3 block) the construction's test accepts, read on
+/// the input's samples. A crossing leaves E only where its edge is no leaf edge, inside a coarse
+/// leaf, and every unit cell of a coarse leaf had its level-1 parent accepted (the repairs only
+/// split), so this bounds what the octree can save. Up to the values near coarse leaves: a
+/// level set's extension beyond its band (corner values of parents there) and hanging nodes
+/// (which move crossings beside coarse leaves) are not modelled; balance only refuses more.
+std::size_t crossings_coarse_leaves_could_remove(const SampleField& fine, const std::vector<EdgePoint>& e,
+                                                 const std::vector<Coord>& crossed_cells,
+                                                 const CoarseningBudget& budget);
 
 /// The adaptive grid and what was measured of it.
 struct CertifiedGrid {

@@ -72,7 +72,8 @@ struct AdaptiveStats {
     std::size_t cells_certified = 0; ///< unit cells the certificate was required of
     std::size_t repair_rounds = 0, repair_splits = 0;
     std::size_t e_uniform = 0;  ///< grid-edge crossings of the input's grid
-    std::size_t e_octree = 0;   ///< crossings of the octree's leaf edges
+    std::size_t e_octree = 0;   ///< crossings of the octree's leaf edges (e_uniform when not built)
+    std::size_t e_removable = 0; ///< the bound on what it could remove, before building (MeshOptions::adaptive_min_saving)
     bool meshed_on_octree = false; ///< false: the octree saved too little (MeshOptions::adaptive_min_saving)
 };
 

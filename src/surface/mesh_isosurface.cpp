@@ -101,6 +101,18 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
     return r;
 }
 
+/// The input's own grid as an adaptive volume without coarse levels: the grid a run meshed on it
+/// saves (MeshResult::adaptive_grid).
+AdaptiveVolume uniform_volume(const openvdb::FloatGrid& grid, const octree::SampleField& fine, int k)
+{
+    AdaptiveVolume v;
+    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(grid.copy()); // shallow: shares the tree
+    v.domain = fine.domain();
+    v.k = k;
+    v.source = "isodel mesh --adaptive";
+    return v;
+}
+
 /// The crossings of the octree's leaf edges: the E points the mesher would start from on it
 /// (seeding/initial_points.cpp takes the same ones).
 std::size_t octree_edge_crossings(const octree::SampleField& coarse, const octree::AdaptiveGrid& g)
@@ -128,20 +140,42 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     budget.distance_world = options.adaptive_share * eps;
     budget.k = options.adaptive_k;
     budget.max_level = options.adaptive_max_level;
+    const octree::EdgeCrossings e = octree::edge_crossings(fine);
+    const std::size_t e_uniform = e.points.size();
+    const double least_saved = options.adaptive_min_saving * double(e_uniform);
+    MeshOptions mo = options;
+    mo.adaptive = false;
+    mo.certify = false;
+    // Not built when even the bound on what it could save falls short.
+    const std::size_t removable =
+        options.adaptive_min_saving > 0 ? octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget)
+                                        : e_uniform;
+    if (double(removable) < least_saved) {
+        const double t_check = seconds_since(t0);
+        MeshResult r = mesh_once(fine, nullptr, mo, interrupter, nullptr);
+        AdaptiveStats& a = r.stats.adaptive;
+        a.used = true;
+        a.e_uniform = a.e_octree = e_uniform;
+        a.e_removable = removable;
+        a.eps_coarsening_world = budget.distance_world;
+        a.eps_meshing_world = r.stats.eps_world;
+        r.stats.eps_world = eps;
+        r.adaptive_grid = std::make_shared<AdaptiveVolume>(uniform_volume(grid, fine, budget.k));
+        r.stats.seconds["adaptive_grid"] = t_check;
+        r.stats.seconds["total"] += t_check;
+        if (options.certify) certify_against(grid, inside, eps, options, r);
+        return r;
+    }
     // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
     // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
     const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
     octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
     const octree::SampleField& coarse = *cg.field; // the coarse field, at the input's v*
-    const std::size_t e_uniform = octree::edge_crossings(fine).points.size();
     const std::size_t e_octree = cg.grid.max_level() > 0 ? octree_edge_crossings(coarse, cg.grid) : e_uniform;
-    const bool on_octree = cg.grid.max_level() > 0 && (options.adaptive_min_saving == 0 ||
-                                                       double(e_octree) <= (1 - options.adaptive_min_saving) * double(e_uniform));
+    const bool on_octree = cg.grid.max_level() > 0 &&
+                           (options.adaptive_min_saving == 0 || double(e_uniform) - double(e_octree) >= least_saved);
     const double t_grid = seconds_since(t0);
 
-    MeshOptions mo = options;
-    mo.adaptive = false;
-    mo.certify = false;
     if (on_octree) mo.eps = eps - cg.distance_world; // else the options' own eps, as mesh_grid reads it
     MeshResult r = on_octree ? mesh_once(coarse, &cg.grid, mo, interrupter, nullptr)
                              : mesh_once(fine, nullptr, mo, interrupter, nullptr);
@@ -150,6 +184,7 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     a.meshed_on_octree = on_octree;
     a.e_uniform = e_uniform;
     a.e_octree = e_octree;
+    a.e_removable = removable;
     a.eps_coarsening_world = budget.distance_world;
     a.distance_world = on_octree ? cg.distance_world : 0.0;
     a.eps_meshing_world = on_octree ? mo.eps : r.stats.eps_world;
@@ -158,15 +193,18 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     a.repair_rounds = cg.rounds;
     a.repair_splits = cg.splits;
     r.stats.eps_world = eps;
-    auto saved = std::make_shared<AdaptiveVolume>();
-    // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive. Meshed
-    // on the input's grid, the grid saved is that one: no coarse levels.
-    saved->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(on_octree ? cg.grid.samples_ptr() : gptr)->copy();
-    if (on_octree) saved->levels = cg.grid.masks();
-    saved->domain = cg.grid.domain();
-    saved->k = cg.grid.k();
-    saved->source = "isodel mesh --adaptive";
-    r.adaptive_grid = std::move(saved);
+    if (on_octree) {
+        auto saved = std::make_shared<AdaptiveVolume>();
+        // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive.
+        saved->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(cg.grid.samples_ptr())->copy();
+        saved->levels = cg.grid.masks();
+        saved->domain = cg.grid.domain();
+        saved->k = cg.grid.k();
+        saved->source = "isodel mesh --adaptive";
+        r.adaptive_grid = std::move(saved);
+    } else {
+        r.adaptive_grid = std::make_shared<AdaptiveVolume>(uniform_volume(grid, fine, budget.k));
+    }
     r.stats.seconds["adaptive_grid"] = t_grid;
     r.stats.seconds["total"] += t_grid;
     if (options.certify) certify_against(grid, inside, eps, options, r);

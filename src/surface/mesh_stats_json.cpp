@@ -63,6 +63,7 @@ std::string to_json(const MeshStats& s)
                          {"repair_splits", a.repair_splits},
                          {"E_uniform", a.e_uniform},
                          {"E_octree", a.e_octree},
+                         {"E_removable_bound", a.e_removable},
                          {"meshed_on", a.meshed_on_octree ? "octree" : "input grid"}};
     }
     if (s.certify_attempts > 0) o["certify_attempts"] = s.certify_attempts;

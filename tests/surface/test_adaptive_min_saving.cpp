@@ -1,7 +1,8 @@
 // MeshOptions::adaptive_min_saving: the octree's share of eps must buy fewer grid-edge crossings.
 // Where it keeps Sigma's cells fine, the surface is meshed on the input's own grid with the
 // whole eps, and the mesh is exactly the one without adaptive; where Sigma coarsens (a smooth
-// sphere), it is meshed on the octree. The decision follows the E counts it reports.
+// sphere), it is meshed on the octree. The decision follows the E counts it reports: a bound
+// before building (then the octree is not built at all) and the octree's own count after.
 #include <catch2/catch.hpp>
 
 #include "support/mesher_test_support.h"
@@ -52,11 +53,11 @@ TEST_CASE("adaptive min saving: an octree that saves too few crossings gives way
 
     const MeshResult r = mesh_isosurface(*grid, adaptive_options(0.1));
     const AdaptiveStats& a = r.stats.adaptive;
-    INFO("E uniform " << a.e_uniform << ", E octree " << a.e_octree);
+    INFO("E uniform " << a.e_uniform << ", E octree " << a.e_octree << ", removable " << a.e_removable);
     REQUIRE(a.used);
-    REQUIRE(a.leaves_per_level.size() > 1); // the octree has coarse leaves (off Sigma)
     CHECK(a.e_uniform == uniform.stats.e_points);
-    CHECK(double(a.e_octree) > 0.9 * double(a.e_uniform));
+    // Decided before building (the bound falls short) or after (the octree's own count).
+    CHECK((double(a.e_removable) < 0.1 * double(a.e_uniform) || double(a.e_octree) > 0.9 * double(a.e_uniform)));
     CHECK_FALSE(a.meshed_on_octree);
     CHECK(a.distance_world == 0);
     CHECK(a.eps_meshing_world == Approx(0.5));
@@ -72,6 +73,34 @@ TEST_CASE("adaptive min saving: an octree that saves too few crossings gives way
     CHECK(forced.stats.adaptive.meshed_on_octree);
     CHECK(forced.stats.adaptive.e_octree == forced.stats.e_points);
     CHECK(forced.stats.adaptive.e_uniform == a.e_uniform);
+    CHECK(double(forced.stats.adaptive.e_octree) > 0.9 * double(a.e_uniform)); // it saves little indeed
+}
+
+TEST_CASE("adaptive min saving: the bound before building, and the count after it", "[mesher][adaptive]")
+{
+    const auto grid = sphere(20, false);
+    MeshOptions plain = adaptive_options(0);
+    plain.adaptive = false;
+    const MeshResult uniform = mesh_isosurface(*grid, plain);
+    const MeshResult forced = mesh_isosurface(*grid, adaptive_options(0));
+    const AdaptiveStats& f = forced.stats.adaptive;
+    const double saved = double(f.e_uniform) - double(f.e_octree);
+    const MeshResult bounded = mesh_isosurface(*grid, adaptive_options(0.1));
+    const std::size_t removable = bounded.stats.adaptive.e_removable;
+    INFO("E uniform " << f.e_uniform << ", E octree " << f.e_octree << ", removable " << removable);
+    REQUIRE(f.meshed_on_octree);
+    CHECK(double(removable) >= saved); // a bound on what the octree saved
+    REQUIRE(double(removable) > saved + 2);
+
+    // A share between the two: the bound lets the octree be built, its count then refuses it.
+    const double share = (saved + double(removable)) / 2 / double(f.e_uniform);
+    const MeshResult r = mesh_isosurface(*grid, adaptive_options(share));
+    const AdaptiveStats& a = r.stats.adaptive;
+    CHECK(a.leaves_per_level.size() > 1); // built
+    CHECK(a.e_octree == f.e_octree);
+    CHECK_FALSE(a.meshed_on_octree);
+    CHECK(r.surface.vertices == uniform.surface.vertices);
+    CHECK(r.surface.triangles == uniform.surface.triangles);
 }
 
 TEST_CASE("adaptive min saving: a smooth sphere coarsens at Sigma and meshes on the octree", "[mesher][adaptive]")
