@@ -101,15 +101,28 @@ MeshResult mesh_grid(const openvdb::FloatGrid& grid, const octree::AdaptiveGrid*
     return r;
 }
 
-/// The input's own grid as an adaptive volume without coarse levels: the grid a run meshed on it
+/// The input's own grid as an adaptive volume without coarse levels: what a run meshed on it
 /// saves (MeshResult::adaptive_grid).
-AdaptiveVolume uniform_volume(const openvdb::FloatGrid& grid, const octree::SampleField& fine, int k)
+std::shared_ptr<AdaptiveVolume> input_grid_volume(const openvdb::FloatGrid& grid, const octree::SampleField& fine, int k)
 {
-    AdaptiveVolume v;
-    v.samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(grid.copy()); // shallow: shares the tree
-    v.domain = fine.domain();
-    v.k = k;
-    v.source = "isodel mesh --adaptive";
+    auto v = std::make_shared<AdaptiveVolume>();
+    v->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(grid.copy()); // shallow: shares the tree
+    v->domain = fine.domain();
+    v->k = k;
+    v->source = "isodel mesh --adaptive";
+    return v;
+}
+
+/// The certified octree as an adaptive volume (MeshResult::adaptive_grid).
+std::shared_ptr<AdaptiveVolume> octree_volume(const octree::AdaptiveGrid& g)
+{
+    auto v = std::make_shared<AdaptiveVolume>();
+    // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive.
+    v->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(g.samples_ptr())->copy();
+    v->levels = g.masks();
+    v->domain = g.domain();
+    v->k = g.k();
+    v->source = "isodel mesh --adaptive";
     return v;
 }
 
@@ -123,12 +136,29 @@ std::size_t octree_edge_crossings(const octree::SampleField& coarse, const octre
                                      [&](const octree::EdgePoint& p) { return on_leaf_edge(leaves, p.lower, p.axis); }));
 }
 
+/// What every adaptive run reports and keeps, then MeshOptions::certify against the input.
+MeshResult finish_adaptive(MeshResult r, AdaptiveStats a, std::shared_ptr<AdaptiveVolume> saved, double eps,
+                           double t_grid, const openvdb::FloatGrid& grid, Inside inside, const MeshOptions& options)
+{
+    a.used = true;
+    // Meshed on the input's grid, the mesher had the whole eps.
+    if (!a.meshed_on_octree) a.eps_meshing_world = r.stats.eps_world;
+    r.stats.adaptive = std::move(a);
+    r.stats.eps_world = eps;
+    r.adaptive_grid = std::move(saved);
+    r.stats.seconds["adaptive_grid"] = t_grid;
+    r.stats.seconds["total"] += t_grid;
+    if (options.certify) certify_against(grid, inside, eps, options, r);
+    return r;
+}
+
 // MeshOptions::adaptive: the certified grid (octree/certified_coarsening.h) spends at most
 // adaptive_share x eps; the mesher gets the rest against the coarse Sigma, at the input's level
 // v*. Then M ~ coarse Sigma ~ Sigma (isotopic) and d_H(M, Sigma) <= eps (docs/adaptive.md).
 // Where the octree keeps Sigma's cells fine, the share it took buys nothing and the mesher,
-// held to less than eps, adds points: below adaptive_min_saving fewer E points, the input's
-// own grid is meshed with the whole eps (the mesh is then exactly the non-adaptive one).
+// held to less than eps, adds points: below adaptive_min_saving fewer E points (bounded before
+// building, counted after), the input's own grid is meshed with the whole eps, exactly as
+// without adaptive.
 MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
@@ -140,75 +170,44 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
     budget.distance_world = options.adaptive_share * eps;
     budget.k = options.adaptive_k;
     budget.max_level = options.adaptive_max_level;
-    const octree::EdgeCrossings e = octree::edge_crossings(fine);
-    const std::size_t e_uniform = e.points.size();
-    const double least_saved = options.adaptive_min_saving * double(e_uniform);
     MeshOptions mo = options;
     mo.adaptive = false;
     mo.certify = false;
-    // Not built when even the bound on what it could save falls short.
-    const std::size_t removable =
-        options.adaptive_min_saving > 0 ? octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget)
-                                        : e_uniform;
-    if (double(removable) < least_saved) {
+
+    AdaptiveStats a;
+    a.eps_coarsening_world = budget.distance_world;
+    const octree::EdgeCrossings e = octree::edge_crossings(fine);
+    a.e_uniform = a.e_octree = e.points.size();
+    const double least_saved = options.adaptive_min_saving * double(a.e_uniform);
+    a.e_removable = options.adaptive_min_saving > 0
+                        ? octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget)
+                        : a.e_uniform;
+    if (double(a.e_removable) < least_saved) { // not built: even the bound falls short
         const double t_check = seconds_since(t0);
-        MeshResult r = mesh_once(fine, nullptr, mo, interrupter, nullptr);
-        AdaptiveStats& a = r.stats.adaptive;
-        a.used = true;
-        a.e_uniform = a.e_octree = e_uniform;
-        a.e_removable = removable;
-        a.eps_coarsening_world = budget.distance_world;
-        a.eps_meshing_world = r.stats.eps_world;
-        r.stats.eps_world = eps;
-        r.adaptive_grid = std::make_shared<AdaptiveVolume>(uniform_volume(grid, fine, budget.k));
-        r.stats.seconds["adaptive_grid"] = t_check;
-        r.stats.seconds["total"] += t_check;
-        if (options.certify) certify_against(grid, inside, eps, options, r);
-        return r;
+        return finish_adaptive(mesh_once(fine, nullptr, mo, interrupter, nullptr), a, input_grid_volume(grid, fine, budget.k),
+                               eps, t_check, grid, inside, options);
     }
+
     // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
     // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
     const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
-    octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
-    const octree::SampleField& coarse = *cg.field; // the coarse field, at the input's v*
-    const std::size_t e_octree = cg.grid.max_level() > 0 ? octree_edge_crossings(coarse, cg.grid) : e_uniform;
-    const bool on_octree = cg.grid.max_level() > 0 &&
-                           (options.adaptive_min_saving == 0 || double(e_uniform) - double(e_octree) >= least_saved);
-    const double t_grid = seconds_since(t0);
-
-    if (on_octree) mo.eps = eps - cg.distance_world; // else the options' own eps, as mesh_grid reads it
-    MeshResult r = on_octree ? mesh_once(coarse, &cg.grid, mo, interrupter, nullptr)
-                             : mesh_once(fine, nullptr, mo, interrupter, nullptr);
-    AdaptiveStats& a = r.stats.adaptive;
-    a.used = true;
-    a.meshed_on_octree = on_octree;
-    a.e_uniform = e_uniform;
-    a.e_octree = e_octree;
-    a.e_removable = removable;
-    a.eps_coarsening_world = budget.distance_world;
-    a.distance_world = on_octree ? cg.distance_world : 0.0;
-    a.eps_meshing_world = on_octree ? mo.eps : r.stats.eps_world;
+    const octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
+    if (cg.grid.max_level() > 0) a.e_octree = octree_edge_crossings(*cg.field, cg.grid);
+    a.meshed_on_octree = cg.grid.max_level() > 0 && (options.adaptive_min_saving == 0 ||
+                                                     double(a.e_uniform) - double(a.e_octree) >= least_saved);
     a.leaves_per_level = cg.grid.level_histogram();
     a.cells_certified = cg.cells_certified;
     a.repair_rounds = cg.rounds;
     a.repair_splits = cg.splits;
-    r.stats.eps_world = eps;
-    if (on_octree) {
-        auto saved = std::make_shared<AdaptiveVolume>();
-        // A shallow copy: a new grid object sharing the samples' tree, which it keeps alive.
-        saved->samples = openvdb::ConstPtrCast<openvdb::FloatGrid>(cg.grid.samples_ptr())->copy();
-        saved->levels = cg.grid.masks();
-        saved->domain = cg.grid.domain();
-        saved->k = cg.grid.k();
-        saved->source = "isodel mesh --adaptive";
-        r.adaptive_grid = std::move(saved);
-    } else {
-        r.adaptive_grid = std::make_shared<AdaptiveVolume>(uniform_volume(grid, fine, budget.k));
-    }
-    r.stats.seconds["adaptive_grid"] = t_grid;
-    r.stats.seconds["total"] += t_grid;
-    if (options.certify) certify_against(grid, inside, eps, options, r);
-    return r;
+    const double t_grid = seconds_since(t0);
+    if (!a.meshed_on_octree)
+        return finish_adaptive(mesh_once(fine, nullptr, mo, interrupter, nullptr), a, input_grid_volume(grid, fine, budget.k),
+                               eps, t_grid, grid, inside, options);
+    mo.eps = eps - cg.distance_world; // the coarse field, at the input's v*
+    a.distance_world = cg.distance_world;
+    a.eps_meshing_world = mo.eps;
+    return finish_adaptive(mesh_once(*cg.field, &cg.grid, mo, interrupter, nullptr), a, octree_volume(cg.grid), eps, t_grid,
+                           grid, inside, options);
 }
 
 } // namespace

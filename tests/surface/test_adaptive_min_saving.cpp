@@ -29,6 +29,14 @@ MeshOptions adaptive_options(double min_saving)
     return mo;
 }
 
+/// The same volume meshed without adaptive: what a run on the input's grid must reproduce.
+MeshResult uniform_mesh(const openvdb::FloatGrid& grid)
+{
+    MeshOptions plain = adaptive_options(0);
+    plain.adaptive = false;
+    return mesh_isosurface(grid, plain);
+}
+
 /// A sphere of radius \p r voxels, a distance field (|grad F| = 1), plus \p bumps of amplitude
 /// 0.3 voxel at a 2.5-voxel wavelength: the bumps keep Sigma's cells fine.
 openvdb::FloatGrid::Ptr sphere(double r, bool bumps)
@@ -47,9 +55,7 @@ TEST_CASE("adaptive min saving: an octree that saves too few crossings gives way
           "[mesher][adaptive]")
 {
     const auto grid = sphere(14, true);
-    MeshOptions plain = adaptive_options(0.1);
-    plain.adaptive = false;
-    const MeshResult uniform = mesh_isosurface(*grid, plain);
+    const MeshResult uniform = uniform_mesh(*grid);
 
     const MeshResult r = mesh_isosurface(*grid, adaptive_options(0.1));
     const AdaptiveStats& a = r.stats.adaptive;
@@ -79,9 +85,7 @@ TEST_CASE("adaptive min saving: an octree that saves too few crossings gives way
 TEST_CASE("adaptive min saving: the bound before building, and the count after it", "[mesher][adaptive]")
 {
     const auto grid = sphere(20, false);
-    MeshOptions plain = adaptive_options(0);
-    plain.adaptive = false;
-    const MeshResult uniform = mesh_isosurface(*grid, plain);
+    const MeshResult uniform = uniform_mesh(*grid);
     const MeshResult forced = mesh_isosurface(*grid, adaptive_options(0));
     const AdaptiveStats& f = forced.stats.adaptive;
     const double saved = double(f.e_uniform) - double(f.e_octree);
