@@ -26,8 +26,8 @@ public:
         for (int k = 0; k < 3; ++k) g[k] *= slope(l[k]);
         return g;
     }
-    /// grad F at phi(x) (sample-space local coordinates): a direction where grad F' vanishes
-    /// because x lies in a corner box (F' constant there).
+    /// grad F at phi(x) (sample-space local coordinates): Sigma's normal at x's preimage, also
+    /// where grad F' loses components in a slab or vanishes in a corner box (F' constant there).
     openvdb::math::Vec3d sample_gradient(double x, double y, double z) const
     {
         return f_.gradient(s_.local(x), s_.local(y), s_.local(z));

@@ -136,7 +136,7 @@ struct MeshOptions {
     /// octree removes less than this share of the input's grid-edge crossings (the E points,
     /// and with them about as many closed-ball points), the surface is meshed on the input's
     /// own grid with the whole eps instead, exactly as without adaptive (AdaptiveStats says
-    /// which). In [0, 1); 0 always meshes on the octree.
+    /// which). In [0, 1); 0 meshes on the octree whenever it has a coarse leaf.
     double adaptive_min_saving = 0.1;
 };
 

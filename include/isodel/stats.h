@@ -68,13 +68,15 @@ struct AdaptiveStats {
     double distance_world = 0;       ///< the largest certified distance (at most the budget); 0 when
                                      ///< the surface was meshed on the input's grid
     double eps_meshing_world = 0;    ///< eps - distance_world: the mesher's bound to the coarse Sigma
-    std::vector<std::uint64_t> leaves_per_level; ///< level 0 first
-    std::size_t cells_certified = 0; ///< unit cells the certificate was required of
-    std::size_t repair_rounds = 0, repair_splits = 0;
+    std::vector<std::uint64_t> leaves_per_level; ///< of the grid meshed, level 0 first (one level on the input's grid)
+    std::size_t cells_certified = 0; ///< unit cells the certificate was required of (0 when not built)
+    std::size_t repair_rounds = 0, repair_splits = 0; ///< of the construction (0 when not built)
     std::size_t e_uniform = 0;  ///< grid-edge crossings of the input's grid
     std::size_t e_octree = 0;   ///< crossings of the octree's leaf edges (e_uniform when not built)
-    std::size_t e_removable = 0; ///< the bound on what it could remove, before building (MeshOptions::adaptive_min_saving)
-    bool meshed_on_octree = false; ///< false: the octree saved too little (MeshOptions::adaptive_min_saving)
+    std::size_t e_removable = 0; ///< the bound on what it could remove, before building (0 when
+                                 ///< not computed: MeshOptions::adaptive_min_saving 0)
+    bool meshed_on_octree = false; ///< false: the input's grid was meshed (the octree saved too little,
+                                   ///< MeshOptions::adaptive_min_saving, or has no coarse leaf)
 };
 
 /// Why the triangle-quality pass (MeshOptions::facet_angle_deg) stopped.

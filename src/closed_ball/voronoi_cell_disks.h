@@ -47,7 +47,8 @@ struct VoronoiCellDiskStats {
     std::size_t sampled = 0;    ///< not certified, but Sigma n Vor(p) sampled has chi >= 0
     std::size_t unresolved = 0; ///< a handle (chi < 0) with no point of Sigma found to insert, or
                                 ///< in a cell smaller than min_extent
-    std::size_t directions = 0; ///< directions tried, over all vertices checked (each at least one)
+    std::size_t directions = 0; ///< directions tried, over all vertices checked (none for a cell left
+                                ///< unresolved before any: unbounded, or no normal at p)
 };
 
 /// Checks the surface vertices in \p pending (in order); returns one candidate per vertex whose

@@ -3,6 +3,7 @@
 // meshing's blocks and merge (partitioned_meshing.h); with MeshOptions::certify the surface is
 // verified before it is returned.
 #include "surface/stage_clock.h"
+#include "surface/thread_limit.h"
 #include "surface/final_points.h"
 #include "surface/mesh_field.h"
 #include "surface/partitioned_meshing.h"
@@ -162,6 +163,7 @@ MeshResult finish_adaptive(MeshResult r, AdaptiveStats a, std::shared_ptr<Adapti
 MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
+    const ThreadLimit threads(options.threads); // the construction too, not only the mesher
     openvdb::FloatGrid::ConstPtr gptr(&grid, [](const openvdb::FloatGrid*) {});
     const Inside inside = inside_side(grid, options);
     const octree::SampleField fine(gptr, options.isovalue, inside);
@@ -176,38 +178,40 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
 
     AdaptiveStats a;
     a.eps_coarsening_world = budget.distance_world;
-    const octree::EdgeCrossings e = octree::edge_crossings(fine);
+    const octree::EdgeCrossings e = octree::edge_crossings(
+        fine, [&](std::size_t, std::size_t) {
+            if (interrupter && interrupter->wasInterrupted()) throw Cancelled("adaptive grid: interrupted");
+        });
     a.e_uniform = a.e_octree = e.points.size();
     const double least_saved = options.adaptive_min_saving * double(a.e_uniform);
-    a.e_removable = options.adaptive_min_saving > 0
-                        ? octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget)
-                        : a.e_uniform;
-    if (double(a.e_removable) < least_saved) { // not built: even the bound falls short
-        const double t_check = seconds_since(t0);
-        return finish_adaptive(mesh_once(fine, nullptr, mo, interrupter, nullptr), a, input_grid_volume(grid, fine, budget.k),
-                               eps, t_check, grid, inside, options);
-    }
-
-    // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
-    // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
-    const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
-    const octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
-    if (cg.grid.max_level() > 0) a.e_octree = octree_edge_crossings(*cg.field, cg.grid);
-    a.meshed_on_octree = cg.grid.max_level() > 0 && (options.adaptive_min_saving == 0 ||
-                                                     double(a.e_uniform) - double(a.e_octree) >= least_saved);
-    a.leaves_per_level = cg.grid.level_histogram();
-    a.cells_certified = cg.cells_certified;
-    a.repair_rounds = cg.rounds;
-    a.repair_splits = cg.splits;
+    if (options.adaptive_min_saving > 0)
+        a.e_removable = octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget);
+    const bool build = options.adaptive_min_saving == 0 || double(a.e_removable) >= least_saved;
+    if (build) {
+        // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
+        // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
+        const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
+        const octree::CertifiedGrid cg = octree::certified_coarsening(fine, budget, interrupter, corners);
+        if (cg.grid.max_level() > 0) a.e_octree = octree_edge_crossings(*cg.field, cg.grid);
+        a.meshed_on_octree = cg.grid.max_level() > 0 && (options.adaptive_min_saving == 0 ||
+                                                         double(a.e_uniform) - double(a.e_octree) >= least_saved);
+        a.cells_certified = cg.cells_certified;
+        a.repair_rounds = cg.rounds;
+        a.repair_splits = cg.splits;
+        if (a.meshed_on_octree) {
+            const double t_grid = seconds_since(t0);
+            mo.eps = eps - cg.distance_world; // the coarse field, at the input's v*
+            a.distance_world = cg.distance_world;
+            a.eps_meshing_world = mo.eps;
+            a.leaves_per_level = cg.grid.level_histogram();
+            return finish_adaptive(mesh_once(*cg.field, &cg.grid, mo, interrupter, nullptr), a, octree_volume(cg.grid),
+                                   eps, t_grid, grid, inside, options);
+        }
+    } // refused: the octree and the extended level set are freed before the input's grid is meshed
+    a.leaves_per_level = octree::AdaptiveGrid(gptr, budget.k).level_histogram(); // the grid meshed and kept
     const double t_grid = seconds_since(t0);
-    if (!a.meshed_on_octree)
-        return finish_adaptive(mesh_once(fine, nullptr, mo, interrupter, nullptr), a, input_grid_volume(grid, fine, budget.k),
-                               eps, t_grid, grid, inside, options);
-    mo.eps = eps - cg.distance_world; // the coarse field, at the input's v*
-    a.distance_world = cg.distance_world;
-    a.eps_meshing_world = mo.eps;
-    return finish_adaptive(mesh_once(*cg.field, &cg.grid, mo, interrupter, nullptr), a, octree_volume(cg.grid), eps, t_grid,
-                           grid, inside, options);
+    return finish_adaptive(mesh_once(fine, nullptr, mo, interrupter, nullptr), a, input_grid_volume(grid, fine, budget.k),
+                           eps, t_grid, grid, inside, options);
 }
 
 } // namespace

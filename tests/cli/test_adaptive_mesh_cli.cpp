@@ -136,3 +136,31 @@ TEST_CASE("mesh --adaptive --adaptive-grid: the octree meshed is written and the
         CHECK(v.out.find("VERIFIED") != std::string::npos);
     }
 }
+
+TEST_CASE("mesh --adaptive --adaptive-min-saving: an octree that saves too little gives way to the input's "
+          "grid, which is what --adaptive-grid writes",
+          "[cli][adaptive]")
+{
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string out = tmp / "m.ply", plain = tmp / "p.ply", grid = tmp / "g.vdb", stats = tmp / "m.json";
+    // The torus's octree removes about a quarter of the crossings: short of 0.9.
+    const RunResult r = run_isodel("mesh " + shell_quote(torus) + " --iso 0 --adaptive --adaptive-min-saving 0.9 --quiet -o " +
+                                       shell_quote(out) + " --adaptive-grid " + shell_quote(grid) + " --stats " +
+                                       shell_quote(stats),
+                                   tmp.path());
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    REQUIRE(run_isodel("mesh " + shell_quote(torus) + " --iso 0 --quiet -o " + shell_quote(plain), tmp.path()).status == 0);
+    const Json s = read_json_file(stats);
+    CHECK(s.at("adaptive").at("meshed_on") == "input grid");
+    CHECK(s.at("adaptive").at("distance_world").get<double>() == 0);
+    CHECK(s.at("adaptive").at("E_octree").get<std::size_t>() < s.at("adaptive").at("E_uniform").get<std::size_t>());
+    CHECK(read_text(out) == read_text(plain)); // the mesh without --adaptive, byte for byte
+    const RunResult info = run_isodel("info " + shell_quote(grid) + " --json", tmp.path());
+    REQUIRE(info.status == 0);
+    const Json i = Json::parse(info.out);
+    INFO(info.out);
+    CHECK(i.at("adaptive").at("levels").get<std::size_t>() == 1);
+    CHECK(i.at("adaptive").at("leaves_per_level") == s.at("adaptive").at("leaves_per_level"));
+}

@@ -62,8 +62,11 @@ TEST_CASE("adaptive min saving: an octree that saves too few crossings gives way
     INFO("E uniform " << a.e_uniform << ", E octree " << a.e_octree << ", removable " << a.e_removable);
     REQUIRE(a.used);
     CHECK(a.e_uniform == uniform.stats.e_points);
-    // Decided before building (the bound falls short) or after (the octree's own count).
-    CHECK((double(a.e_removable) < 0.1 * double(a.e_uniform) || double(a.e_octree) > 0.9 * double(a.e_uniform)));
+    // Decided before building: the bound falls short, and nothing was built.
+    CHECK(double(a.e_removable) < 0.1 * double(a.e_uniform));
+    CHECK(a.e_octree == a.e_uniform);
+    CHECK(a.cells_certified == 0);
+    CHECK(a.leaves_per_level.size() == 1); // the grid meshed: the input's
     CHECK_FALSE(a.meshed_on_octree);
     CHECK(a.distance_world == 0);
     CHECK(a.eps_meshing_world == Approx(0.5));
@@ -100,8 +103,10 @@ TEST_CASE("adaptive min saving: the bound before building, and the count after i
     const double share = (saved + double(removable)) / 2 / double(f.e_uniform);
     const MeshResult r = mesh_isosurface(*grid, adaptive_options(share));
     const AdaptiveStats& a = r.stats.adaptive;
-    CHECK(a.leaves_per_level.size() > 1); // built
+    CHECK(a.cells_certified == f.cells_certified); // built
     CHECK(a.e_octree == f.e_octree);
+    CHECK(a.leaves_per_level.size() == 1); // but the grid meshed is the input's
+    CHECK(r.adaptive_grid->levels.size() <= 1);
     CHECK_FALSE(a.meshed_on_octree);
     CHECK(r.surface.vertices == uniform.surface.vertices);
     CHECK(r.surface.triangles == uniform.surface.triangles);

@@ -123,10 +123,11 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         ->check(CLI::Range(0, 15));
     cmd->add_option("--adaptive-min-saving", o->adaptive_min_saving,
                     "--adaptive: mesh the input's own grid with the whole eps when the octree removes less than "
-                    "this share of its grid-edge crossings (default 0.1; 0: always the octree)")
+                    "this share of its grid-edge crossings (default 0.1; 0: the octree whenever it has a coarse leaf)")
         ->check(CLI::Range(0.0, 0.999999));
     cmd->add_option("--adaptive-grid", o->adaptive_grid,
-                    "--adaptive: also write the certified octree (.vdb, as isodel decimate writes), so that "
+                    "--adaptive: also write the grid meshed (.vdb, as isodel decimate writes: the certified "
+                    "octree, or the input's own grid when the octree saved too little), so that "
                     "isodel verify can check the surface against its interpolant too");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     cmd->add_flag("--trace", o->trace, "Print the mesher's trace on stderr: one line per refinement round and check");
