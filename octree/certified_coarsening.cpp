@@ -352,16 +352,8 @@ std::size_t crossings_coarse_leaves_could_remove(const SampleField& fine, const 
     };
     std::size_t n = 0;
     for (const EdgePoint& p : e) {
-        // The four unit cells around the edge.
-        const int b = (p.axis + 1) % 3, c = (p.axis + 2) % 3;
-        bool removable = false;
-        for (int q = 0; q < 4 && !removable; ++q) {
-            Coord u = p.lower;
-            u[b] -= q & 1;
-            u[c] -= (q >> 1) & 1;
-            removable = accepted(u);
-        }
-        n += removable;
+        const auto around = cells_around_edge(p.lower, p.axis);
+        n += std::any_of(around.begin(), around.end(), accepted);
     }
     return n;
 }

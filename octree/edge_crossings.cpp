@@ -195,15 +195,7 @@ EdgeCrossings edge_crossings(const SampleField& field, const BlockProgress& prog
     });
     out.crossed_cells = voxel_set(out.points.size(), 4, [&](std::size_t i, auto& cells) {
         const EdgePoint& p = out.points[i];
-        // The four cells around the edge.
-        const int b = (p.axis + 1) % 3, c = (p.axis + 2) % 3;
-        for (int k = 0; k < 2; ++k)
-            for (int j = 0; j < 2; ++j) {
-                Coord cell = p.lower;
-                cell[b] -= k;
-                cell[c] -= j;
-                cells.setValueOn(cell);
-            }
+        for (const Coord& cell : cells_around_edge(p.lower, p.axis)) cells.setValueOn(cell);
     }).coords;
     return out;
 }

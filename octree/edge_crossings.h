@@ -8,6 +8,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -19,6 +20,19 @@ struct EdgePoint {
     int axis;        ///< 0,1,2: the edge runs from lower to lower + e_axis
     double t;        ///< the crossing's offset along the edge, 0 < t < 1 (the same wherever the edge is)
 };
+
+/// The four unit cells (by lower corner) around the edge from \p lower along \p axis.
+inline std::array<Coord, 4> cells_around_edge(const Coord& lower, int axis)
+{
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    std::array<Coord, 4> cells;
+    for (int q = 0; q < 4; ++q) {
+        cells[q] = lower;
+        cells[q][b] -= q & 1;
+        cells[q][c] -= (q >> 1) & 1;
+    }
+    return cells;
+}
 
 struct EdgeCrossings {
     std::vector<EdgePoint> points;
