@@ -1,5 +1,7 @@
 #include "seeding/adaptive_points.h"
 
+#include "octree/edge_crossings.h"
+
 #include "octree/adaptive_queries.h"
 
 #include <algorithm>
@@ -33,10 +35,7 @@ bool on_leaf_edge(const octree::AdaptiveGrid::Reader& r, const Coord& lower, int
     const int b = (axis + 1) % 3, c = (axis + 2) % 3;
     // The four unit cells around the edge's line; the edge is a leaf edge iff it lies on two
     // boundary planes of one of their leaves.
-    for (int q = 0; q < 4; ++q) {
-        Coord u = lower;
-        u[b] -= q & 1;
-        u[c] -= (q >> 1) & 1;
+    for (const Coord& u : octree::cells_around_edge(lower, axis)) {
         const CellId l = leaf_or_unit(r, u);
         if (on_boundary(lower[b], l.origin[b], l.size()) && on_boundary(lower[c], l.origin[c], l.size())) return true;
     }
