@@ -114,7 +114,7 @@ int main(int argc, char** argv)
         const std::string a = argv[i], v = argv[i + 1];
         if (a == "--data") dirs.push_back(v);
         else if (a == "--reps") reps = std::max(1, std::stoi(v));
-        else if (a == "--whole-reps") whole_reps = std::max(1, std::stoi(v));
+        else if (a == "--whole-reps") whole_reps = std::max(0, std::stoi(v));
         else if (a == "--threads") threads = std::max(1, std::stoi(v));
         else if (a == "--eps-voxels") eps_voxels = std::stod(v);
         else if (a == "--only") only = v;
@@ -166,7 +166,7 @@ int main(int argc, char** argv)
             if (stages_at_threads)
                 std::printf("  at %d threads: field %.2f E %.2f G %.2f tubes %.2f\n", threads, 1e3 * med(two, &Stages::field),
                              1e3 * med(two, &Stages::e), 1e3 * med(two, &Stages::g), 1e3 * med(two, &Stages::tubes));
-            const double p1 = median(pre1), p2 = median(pre2), share = median(points) / median(total);
+            const double p1 = median(pre1), p2 = median(pre2), share = points.empty() ? 0.0 : median(points) / median(total); // --whole-reps 0: stages only
             worst_share = std::max(worst_share, share);
             worst_x = std::min(worst_x, p1 / p2);
             const double ms = 1e3;
