@@ -182,16 +182,29 @@ double split_potential(const AdaptiveGrid& g)
     return total;
 }
 
-// The coarse leaves covering the unit cells u - reach .. u + reach, the leaves whose values \p u's
-// certificate reads, hanging-node constraints included: reach 2 for its block (nodes u - 1 ..
-// u + 2), reach 1 for its corners only (the leaves whose refinement lowers delta of (b); a
-// changed cell has a corner inside some coarse leaf's span, so this is never empty for one).
-void coarse_leaves_near(const AdaptiveGrid::Reader& r, const Coord& u, int reach, std::vector<CellId>& out)
+// The leaves a failing cell's repair splits: the coarsest of the leaves covering the unit cells
+// u - 2 .. u + 2, which hold every value u's certificate reads (its block's nodes u - 1 .. u + 2,
+// hanging-node constraints included). The coarsest leaf there bounds both what the failure
+// measures, delta at u's corners and the smallest edge difference g of its block, since a coarse
+// interpolant's error grows with its cell; splitting the finer leaves beside it as well undid
+// what the grid had certified at their level (a torus's level-1 leaves at Sigma beside refused
+// level-2 ones), and a finer leaf that still fails is split in a later round. A changed cell has
+// a corner inside some coarse leaf's span, so this is never empty for one and each failing
+// round splits a leaf.
+void coarsest_leaves_read(const AdaptiveGrid::Reader& r, const Coord& u, std::vector<CellId>& near,
+                          std::vector<CellId>& out)
 {
-    for (int z = -reach; z <= reach; ++z)
-        for (int y = -reach; y <= reach; ++y)
-            for (int x = -reach; x <= reach; ++x)
-                if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) out.push_back(*leaf);
+    near.clear();
+    int top = 1;
+    for (int z = -2; z <= 2; ++z)
+        for (int y = -2; y <= 2; ++y)
+            for (int x = -2; x <= 2; ++x)
+                if (const auto leaf = r.leaf(u.offsetBy(x, y, z)); leaf && leaf->level > 0) {
+                    near.push_back(*leaf);
+                    top = std::max(top, leaf->level);
+                }
+    for (const CellId& c : near)
+        if (c.level == top) out.push_back(c);
 }
 
 } // namespace
@@ -401,13 +414,10 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
         std::vector<CellId> split;
         AdaptiveGrid::Reader r(g);
         std::size_t reasons[4] = {0, 0, 0, 0};
+        std::vector<CellId> near;
         for (std::size_t i = 0; i < cells.size(); ++i) {
             ++reasons[int(failed[i])];
-            // Over budget: delta at u's corners is too large for the gradient, and the leaves
-            // those corners read are the ones to refine. Otherwise (no monotone axis, a coarse
-            // sample at v*) every leaf the block reads.
-            if (failed[i] != CertificateFailure::None)
-                coarse_leaves_near(r, cells[i], failed[i] == CertificateFailure::OverBudget ? 1 : 2, split);
+            if (failed[i] != CertificateFailure::None) coarsest_leaves_read(r, cells[i], near, split);
         }
         if (intr) {
             const std::string line = "adaptive grid: round " + std::to_string(out.rounds) + ": " +

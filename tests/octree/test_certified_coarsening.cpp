@@ -181,3 +181,45 @@ TEST_CASE("certified_coarsening: a narrow-band level set coarsens at Sigma as fa
     CHECK(rc.failed == 0);
     CHECK(rc.worst == cg.distance_world);
 }
+
+TEST_CASE("certified_coarsening: a failing proposal splits the coarsest leaves it reads, not the finer ones beside them", "[octree][adaptive]")
+{
+    // A torus whose tube (radius 8 voxels) is too curved for 4-voxel cells at this budget but not
+    // for 2-voxel ones. The construction proposes level-2 leaves at Sigma that the repair rounds
+    // refuse; a failure reads the leaves of its 3x3x3 block, and splitting all of them (the
+    // level-1 leaves beside the refused one too) left Sigma about as fine as the input. Splitting
+    // only the coarsest ones keeps the level-1 coarsening a grid of at most level 1 certifies.
+    const double cx = 31.7, cy = 32.2, cz = 13.6;
+    const auto g = dense_grid(64, [&](double x, double y, double z) {
+        const double q = std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy)) - 20.0;
+        return 8.0 - std::sqrt(q * q + (z - cz) * (z - cz));
+    });
+    const SampleField fine = field_of(g);
+    auto coarse_crossed = [&](const CertifiedGrid& cg) {
+        const SampleField::Reader f(fine);
+        const isodel::octree::AdaptiveGrid::Reader r(cg.grid);
+        std::size_t n = 0;
+        for (int z = 0; z < 63; ++z)
+            for (int y = 0; y < 63; ++y)
+                for (int x = 0; x < 63; ++x) {
+                    bool pos = false, neg = false;
+                    for (int m = 0; m < 8; ++m) (f.phi(Coord(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
+                    n += pos && neg && r.leaf_level(Coord(x, y, z)) >= 1;
+                }
+        return n;
+    };
+    isodel::octree::CoarseningBudget budget;
+    budget.distance_world = 0.25;
+    budget.max_level = 1;
+    const CertifiedGrid level1 = isodel::octree::certified_coarsening(fine, budget);
+    budget.max_level = 5;
+    const CertifiedGrid full = isodel::octree::certified_coarsening(fine, budget);
+    const std::size_t n1 = coarse_crossed(level1), n5 = coarse_crossed(full);
+    INFO("crossed cells under coarse leaves: " << n1 << " with level 1 at most, " << n5 << " with level 5");
+    REQUIRE(n1 > 2000);
+    CHECK(full.rounds >= 1); // the level-2 proposals were refused somewhere
+    CHECK(n5 * 10 >= n1 * 9);
+    const Recheck rc = recheck(fine, full, budget.distance_world);
+    CHECK(rc.cells > 0);
+    CHECK(rc.failed == 0);
+}
