@@ -17,7 +17,8 @@ namespace isodel::octree {
 /// A copy of \p grid with the distances extended \p voxels layers beyond its narrow band; the
 /// new voxels stay inactive (so the active bounding box, hence the domain, is the input's) and
 /// the band's own values are unchanged. Null when \p grid is not a level set (GRID_LEVEL_SET
-/// with uniform voxels) or \p voxels < 1.
+/// with uniform voxels), when it has no band to extend (every voxel of its active box active),
+/// or \p voxels < 1.
 openvdb::FloatGrid::Ptr extend_level_set(const openvdb::FloatGrid& grid, int voxels);
 
 } // namespace isodel::octree

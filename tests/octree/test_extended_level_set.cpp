@@ -47,3 +47,19 @@ TEST_CASE("extend_level_set: refuses what is not a level set", "[octree][adaptiv
     const auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(5.f, openvdb::Vec3f(0.f), 1.f);
     CHECK_FALSE(isodel::octree::extend_level_set(*sphere, 0));
 }
+
+TEST_CASE("extend_level_set: a level set stored densely has no band to extend", "[octree][adaptive]")
+{
+    // Every voxel of the active box active (an analytic distance sampled on a box): nothing
+    // inside the box is missing, so no copy is made; drop one voxel and there is a gap to fill.
+    auto dense = openvdb::FloatGrid::create(10.f);
+    dense->setGridClass(openvdb::GRID_LEVEL_SET);
+    auto acc = dense->getAccessor();
+    for (int k = 0; k < 20; ++k)
+        for (int j = 0; j < 20; ++j)
+            for (int i = 0; i < 20; ++i)
+                acc.setValueOn(openvdb::Coord(i, j, k), float(std::sqrt((i - 9.7) * (i - 9.7) + (j - 10.2) * (j - 10.2) + (k - 9.9) * (k - 9.9)) - 6));
+    CHECK_FALSE(isodel::octree::extend_level_set(*dense, 8));
+    acc.setValueOff(openvdb::Coord(0, 0, 0));
+    CHECK(isodel::octree::extend_level_set(*dense, 8));
+}
