@@ -184,9 +184,9 @@ double split_potential(const AdaptiveGrid& g)
 
 // The leaves a failing cell's repair splits: the coarsest of the leaves covering the unit cells
 // u - 2 .. u + 2, which hold every value u's certificate reads (its block's nodes u - 1 .. u + 2,
-// hanging-node constraints included). The coarsest leaf there bounds both what the failure
-// measures, delta at u's corners and the smallest edge difference g of its block, since a coarse
-// interpolant's error grows with its cell; splitting the finer leaves beside it as well undid
+// hanging-node constraints included). The coarsest leaf there is the likeliest cause of what the
+// failure measures, delta at u's corners or the smallest edge difference g of its block, since a
+// coarse interpolant's error grows with its cell; splitting the finer leaves beside it as well undid
 // what the grid had certified at their level (a torus's level-1 leaves at Sigma beside refused
 // level-2 ones), and a finer leaf that still fails is split in a later round. A changed cell has
 // a corner inside some coarse leaf's span, so this is never empty for one and each failing

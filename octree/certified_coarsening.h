@@ -94,8 +94,9 @@ struct CertifiedGrid {
 /// Builds the grid bottom-up (a parent replaces its 8 children when its own interpolant passes
 /// the certificate's tests on its span, or when its span is off Sigma), then checks the
 /// certificate on every changed cell of the continuous interpolant and splits, around every cell
-/// that fails, the coarsest leaves its certificate reads, until none does. Each split lowers sum over leaves of (8^level - 1) / 7,
-/// which bounds the repair rounds; the uniform grid (nothing changed) always passes.
+/// that fails, the coarsest leaves its certificate reads, until none does. Each split lowers sum
+/// over leaves of (8^level - 1) / 7, which bounds the repair rounds; the uniform grid (nothing
+/// changed) always passes.
 /// \throw Cancelled when \p interrupter asks to stop.
 /// \p corner_samples, when given, is where coarse leaves read their corners (an extended level
 /// set, extended_level_set.h; same active bounding box as the input); the certificate still

@@ -9,8 +9,8 @@ openvdb::FloatGrid::Ptr extend_level_set(const openvdb::FloatGrid& grid, int vox
     if (voxels < 1 || grid.getGridClass() != openvdb::GRID_LEVEL_SET || !grid.hasUniformVoxels()) return nullptr;
     // A level set stored densely (every voxel of its active box active) has no band to extend
     // within the box, the only nodes coarse cells read beyond the input's samples being the
-    // domain's one-voxel ring; dilating it would cost the whole box (a third of a 65^3 grid's
-    // adaptive construction) and give those ring nodes, off Sigma, other outside values.
+    // domain's one-voxel ring; dilating it would cost a pass over the whole box and only give
+    // those ring nodes, off Sigma, other outside values.
     if (std::uint64_t(grid.activeVoxelCount()) == grid.evalActiveVoxelBoundingBox().volume()) return nullptr;
     auto out = grid.deepCopy();
     openvdb::tools::LevelSetTracker<openvdb::FloatGrid> tracker(*out);

@@ -13,7 +13,7 @@
 //                [--only SUBSTRING] [--stages-at-threads 1]
 // --stages-at-threads 1 adds a line per volume: each stage's median at --threads.
 // The stages run --reps times, the whole run --whole-reps times (its points and total are
-// medians over those).
+// medians over those; 0 times the stages alone, for profiling them).
 #include "support/bench_support.h"
 
 #include "octree/edge_crossings.h"
