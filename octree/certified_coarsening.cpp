@@ -429,6 +429,10 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
                                      " coarse sample at v*";
             intr->log(line.c_str());
         }
+        const std::size_t failures = cells.size() - reasons[int(CertificateFailure::None)];
+        if (split.empty() && failures > 0) // a failing changed cell always has a coarse leaf near it
+            throw GuaranteeViolated("adaptive grid: " + std::to_string(failures) +
+                                    " cells failed their certificate with no coarse leaf to split");
         if (split.empty()) {
             out.distance_world = cells.empty() ? 0 : *std::max_element(distance.begin(), distance.end());
             break;

@@ -2,6 +2,8 @@
 
 #include <openvdb/tools/LevelSetTracker.h>
 
+#include <cstdint>
+
 namespace isodel::octree {
 
 openvdb::FloatGrid::Ptr extend_level_set(const openvdb::FloatGrid& grid, int voxels)
@@ -10,7 +12,7 @@ openvdb::FloatGrid::Ptr extend_level_set(const openvdb::FloatGrid& grid, int vox
     // A level set stored densely (every voxel of its active box active) has no band to extend
     // within the box, the only nodes coarse cells read beyond the input's samples being the
     // domain's one-voxel ring; dilating it would cost a pass over the whole box and only give
-    // those ring nodes, off Sigma, other outside values.
+    // those ring nodes other values, which the certificate would check like any corner value.
     if (std::uint64_t(grid.activeVoxelCount()) == grid.evalActiveVoxelBoundingBox().volume()) return nullptr;
     auto out = grid.deepCopy();
     openvdb::tools::LevelSetTracker<openvdb::FloatGrid> tracker(*out);

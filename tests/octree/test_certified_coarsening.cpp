@@ -182,13 +182,15 @@ TEST_CASE("certified_coarsening: a narrow-band level set coarsens at Sigma as fa
     CHECK(rc.worst == cg.distance_world);
 }
 
-TEST_CASE("certified_coarsening: a failing proposal splits the coarsest leaves it reads, not the finer ones beside them", "[octree][adaptive]")
+TEST_CASE("certified_coarsening: a failing proposal splits the coarsest leaves it reads, not the finer ones beside them",
+          "[octree][adaptive]")
 {
     // A torus whose tube (radius 8 voxels) is too curved for 4-voxel cells at this budget but not
     // for 2-voxel ones. The construction proposes level-2 leaves at Sigma that the repair rounds
-    // refuse; a failure reads the leaves of its 3x3x3 block, and splitting all of them (the
-    // level-1 leaves beside the refused one too) left Sigma about as fine as the input. Splitting
-    // only the coarsest ones keeps the level-1 coarsening a grid of at most level 1 certifies.
+    // refuse; a failing cell's certificate reads the leaves covering its 5^3 neighbourhood, and
+    // splitting all of them (the level-1 leaves beside a refused level-2 one too) kept under
+    // half of the level-1 coarsening at Sigma. Splitting only the coarsest ones keeps what a grid
+    // of at most level 1 certifies.
     const double cx = 31.7, cy = 32.2, cz = 13.6;
     const auto g = dense_grid(64, [&](double x, double y, double z) {
         const double q = std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy)) - 20.0;
@@ -203,7 +205,8 @@ TEST_CASE("certified_coarsening: a failing proposal splits the coarsest leaves i
             for (int y = 0; y < 63; ++y)
                 for (int x = 0; x < 63; ++x) {
                     bool pos = false, neg = false;
-                    for (int m = 0; m < 8; ++m) (f.phi(Coord(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
+                    for (int m = 0; m < 8; ++m)
+                        (f.phi(Coord(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
                     n += pos && neg && r.leaf_level(Coord(x, y, z)) >= 1;
                 }
         return n;
@@ -217,7 +220,8 @@ TEST_CASE("certified_coarsening: a failing proposal splits the coarsest leaves i
     const std::size_t n1 = coarse_crossed(level1), n5 = coarse_crossed(full);
     INFO("crossed cells under coarse leaves: " << n1 << " with level 1 at most, " << n5 << " with level 5");
     REQUIRE(n1 > 2000);
-    CHECK(full.rounds >= 1); // the level-2 proposals were refused somewhere
+    CHECK(full.rounds >= 1); // some proposals were refused and split
+    CHECK(full.grid.max_level() >= 2);
     CHECK(n5 * 10 >= n1 * 9);
     const Recheck rc = recheck(fine, full, budget.distance_world);
     CHECK(rc.cells > 0);

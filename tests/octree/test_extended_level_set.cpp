@@ -58,7 +58,8 @@ TEST_CASE("extend_level_set: a level set stored densely has no band to extend", 
     for (int k = 0; k < 20; ++k)
         for (int j = 0; j < 20; ++j)
             for (int i = 0; i < 20; ++i)
-                acc.setValueOn(openvdb::Coord(i, j, k), float(std::sqrt((i - 9.7) * (i - 9.7) + (j - 10.2) * (j - 10.2) + (k - 9.9) * (k - 9.9)) - 6));
+                acc.setValueOn(openvdb::Coord(i, j, k),
+                               float(std::sqrt((i - 9.7) * (i - 9.7) + (j - 10.2) * (j - 10.2) + (k - 9.9) * (k - 9.9)) - 6));
     CHECK_FALSE(isodel::octree::extend_level_set(*dense, 8));
     acc.setValueOff(openvdb::Coord(0, 0, 0));
     CHECK(isodel::octree::extend_level_set(*dense, 8));

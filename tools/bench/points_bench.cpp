@@ -166,7 +166,8 @@ int main(int argc, char** argv)
             if (stages_at_threads)
                 std::printf("  at %d threads: field %.2f E %.2f G %.2f tubes %.2f\n", threads, 1e3 * med(two, &Stages::field),
                              1e3 * med(two, &Stages::e), 1e3 * med(two, &Stages::g), 1e3 * med(two, &Stages::tubes));
-            const double p1 = median(pre1), p2 = median(pre2), share = points.empty() ? 0.0 : median(points) / median(total); // --whole-reps 0: stages only
+            const double p1 = median(pre1), p2 = median(pre2);
+            const double share = points.empty() ? 0.0 : median(points) / median(total); // --whole-reps 0: no whole run
             worst_share = std::max(worst_share, share);
             worst_x = std::min(worst_x, p1 / p2);
             const double ms = 1e3;
