@@ -53,6 +53,30 @@ Recheck recheck(const SampleField& fine, const CertifiedGrid& cg, double budget)
     return out;
 }
 
+/// The unit cells of \p box (lower corners, upper bound excluded) whose corners \p fine reads
+/// with both signs, and how many of them lie under leaves of \p cg of level >= \p min_level.
+struct CrossedCells {
+    std::size_t crossed = 0, coarse = 0;
+};
+CrossedCells crossed_cells_under(const SampleField& fine, const CertifiedGrid& cg, const openvdb::CoordBBox& box,
+                                 int min_level)
+{
+    const SampleField::Reader f(fine);
+    const isodel::octree::AdaptiveGrid::Reader r(cg.grid);
+    CrossedCells out;
+    for (int z = box.min().z(); z < box.max().z(); ++z)
+        for (int y = box.min().y(); y < box.max().y(); ++y)
+            for (int x = box.min().x(); x < box.max().x(); ++x) {
+                bool pos = false, neg = false;
+                for (int m = 0; m < 8; ++m)
+                    (f.phi(Coord(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
+                if (!(pos && neg)) continue;
+                ++out.crossed;
+                out.coarse += r.leaf_level(Coord(x, y, z)) >= min_level;
+            }
+    return out;
+}
+
 } // namespace
 
 TEST_CASE("certify_cell: a monotone pair passes with delta / g, each broken condition fails", "[octree][adaptive]")
@@ -157,19 +181,8 @@ TEST_CASE("certified_coarsening: a narrow-band level set coarsens at Sigma as fa
     REQUIRE(cg.distance_world <= budget.distance_world);
 
     // The unit cells Sigma crosses (corners of both signs), and the level of the leaf over each.
-    const SampleField::Reader f(fine);
-    const isodel::octree::AdaptiveGrid::Reader r(cg.grid);
-    std::size_t crossed = 0, coarse = 0;
-    const openvdb::CoordBBox box = ls->evalActiveVoxelBoundingBox();
-    for (int z = box.min().z(); z < box.max().z(); ++z)
-        for (int y = box.min().y(); y < box.max().y(); ++y)
-            for (int x = box.min().x(); x < box.max().x(); ++x) {
-                bool pos = false, neg = false;
-                for (int m = 0; m < 8; ++m) (f.phi(Coord(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
-                if (!(pos && neg)) continue;
-                ++crossed;
-                coarse += r.leaf_level(Coord(x, y, z)) >= 2;
-            }
+    const CrossedCells cc = crossed_cells_under(fine, cg, ls->evalActiveVoxelBoundingBox(), 2);
+    const std::size_t crossed = cc.crossed, coarse = cc.coarse;
     INFO(coarse << " of " << crossed << " crossed unit cells under leaves of level >= 2");
     REQUIRE(crossed > 10000);
     CHECK(coarse >= crossed * 2 / 5);
@@ -197,27 +210,15 @@ TEST_CASE("certified_coarsening: a failing proposal splits the coarsest leaves i
         return 8.0 - std::sqrt(q * q + (z - cz) * (z - cz));
     });
     const SampleField fine = field_of(g);
-    auto coarse_crossed = [&](const CertifiedGrid& cg) {
-        const SampleField::Reader f(fine);
-        const isodel::octree::AdaptiveGrid::Reader r(cg.grid);
-        std::size_t n = 0;
-        for (int z = 0; z < 63; ++z)
-            for (int y = 0; y < 63; ++y)
-                for (int x = 0; x < 63; ++x) {
-                    bool pos = false, neg = false;
-                    for (int m = 0; m < 8; ++m)
-                        (f.phi(Coord(x + (m & 1), y + ((m >> 1) & 1), z + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
-                    n += pos && neg && r.leaf_level(Coord(x, y, z)) >= 1;
-                }
-        return n;
-    };
     isodel::octree::CoarseningBudget budget;
     budget.distance_world = 0.25;
     budget.max_level = 1;
     const CertifiedGrid level1 = isodel::octree::certified_coarsening(fine, budget);
     budget.max_level = 5;
     const CertifiedGrid full = isodel::octree::certified_coarsening(fine, budget);
-    const std::size_t n1 = coarse_crossed(level1), n5 = coarse_crossed(full);
+    const openvdb::CoordBBox cells(Coord(0), Coord(63));
+    const std::size_t n1 = crossed_cells_under(fine, level1, cells, 1).coarse;
+    const std::size_t n5 = crossed_cells_under(fine, full, cells, 1).coarse;
     INFO("crossed cells under coarse leaves: " << n1 << " with level 1 at most, " << n5 << " with level 5");
     REQUIRE(n1 > 2000);
     CHECK(full.rounds >= 1); // some proposals were refused and split
