@@ -1,10 +1,10 @@
 #pragma once
 /// \file block_transport.h
-/// Partitioned meshing across processes (MeshOptions::block_voxels with MeshOptions::transport):
-/// how the processes of one run, MPI ranks for example, share what their blocks produce. The
-/// library never calls MPI itself; it asks these three questions. The isodel command line
-/// supplies an MPI implementation (tools/isodel/mpi_transport.h) when it is built with MPI and
-/// started by mpirun.
+/// Partitioned meshing across processes (MeshOptions::block_voxels or block_count with
+/// MeshOptions::transport): how the processes of one run, MPI ranks for example, share what
+/// their blocks produce. The library never calls MPI itself; it asks these three questions. The
+/// isodel command line supplies an MPI implementation (tools/isodel/mpi_transport.h) when it is
+/// built with MPI and started by mpirun.
 ///
 /// The blocks are dealt to the P processes by their estimated work (the grid-edge crossings in
 /// each block's box, largest first to the least loaded process; every process computes the same

@@ -106,11 +106,18 @@ struct MeshOptions {
     /// more on each side, so smaller blocks repeat the same work many times over. At most 10^6
     /// blocks.
     int block_voxels = 0;
-    /// With block_voxels: the processes the blocks are spread over (block_transport.h), or null
-    /// for this process's threads. Not with tets.
+    /// Partitioned meshing into this many blocks of about equal work instead of cubes (0 = off;
+    /// not with block_voxels): the count is factored into blocks per axis so that the cut faces,
+    /// whose collars are meshed twice, are smallest (2 blocks: two slabs of the longest axis),
+    /// and the cuts are placed where the grid-edge crossings split evenly. One block per process
+    /// or thread spends the least on collars. The mesh depends on the count, not on who meshes
+    /// the blocks. Blocks are at least kMinBlockVoxels wide.
+    int block_count = 0;
+    /// With block_voxels or block_count: the processes the blocks are spread over
+    /// (block_transport.h), or null for this process's threads. Not with tets.
     BlockTransport* transport = nullptr;
-    /// With block_voxels: hold at most one block per thread in memory. After each pass a block
-    /// keeps only its owned facets and its points and frees its triangulation; when a
+    /// With block_voxels or block_count: hold at most one block per thread in memory. After
+    /// each pass a block keeps only its owned facets and its points and frees its triangulation; when a
     /// neighbour's points arrive it is built again from E, G and its points and checked again
     /// in full. Lowers the peak memory of the processes holding several blocks, at the cost of
     /// the rebuilds. The full checks may insert other points than the kept block's incremental
@@ -127,7 +134,7 @@ struct MeshOptions {
     /// coarse wherever a per-cell certificate proves the coarse level set isotopic to the input's
     /// and within adaptive_share x eps of it, and mesh on its leaves with the rest of eps. The
     /// guarantees I-III hold against the input's Sigma (certify checks them there). Dense input
-    /// only, without block_voxels.
+    /// only, without block_voxels or block_count.
     bool adaptive = false;
     double adaptive_share = 0.5; ///< share of eps the coarsening may spend, in (0, 1)
     int adaptive_k = 1;          ///< level difference of touching leaves, in [1, 4]
@@ -157,8 +164,8 @@ struct MeshResult {
 };
 
 /// Checks \p options before any work: eps (or eps_voxels) positive and finite, threads,
-/// max_rounds, max_points, block_voxels, facet_angle_deg, the tet dihedral range and the adaptive options in their
-/// ranges, and adaptive without block_voxels.
+/// max_rounds, max_points, block_voxels, block_count, facet_angle_deg, the tet dihedral range and
+/// the adaptive options in their ranges, and adaptive without partitioned meshing.
 /// \throw InvalidInput naming the option and the value it refuses
 void check_mesh_options(const MeshOptions& options);
 

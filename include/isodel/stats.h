@@ -19,7 +19,7 @@ struct ComponentTopology {
     std::size_t triangles = 0;
 };
 
-/// What partitioned meshing did (MeshOptions::block_voxels > 0).
+/// What partitioned meshing did (MeshOptions::block_voxels or block_count > 0).
 struct PartitionStats {
     int blocks = 0;                       ///< blocks of the partition
     int collar_voxels = 0;                ///< collar width (the widest axis), after any growth
@@ -154,7 +154,7 @@ struct MeshStats {
     std::size_t bound_repairs = 0;       ///< grid points added where a Voronoi cell left its bound
     std::vector<ComponentTopology> components;
     TetStats tets;                        ///< filled when MeshOptions::tets != None
-    PartitionStats partition;             ///< filled when MeshOptions::block_voxels > 0
+    PartitionStats partition;             ///< filled by partitioned meshing
     AdaptiveStats adaptive;               ///< filled when MeshOptions::adaptive
     /// MeshOptions::certify: 1 when the mesh was verified, 0 without certify. It never exceeds
     /// 1: Sigma' has no knife-edge creases (octree/face_slabs.h), so there is no crease parameter

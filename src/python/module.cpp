@@ -68,7 +68,7 @@ struct MeshArgs {
     double tet_size = 0, tet_grading = 0.5;
     bool adaptive = false, certify = false, snap = false, improve_tets = true, release_blocks = false;
     std::optional<int> threads;
-    int max_rounds = 2000, block_voxels = 0;
+    int max_rounds = 2000, block_voxels = 0, block_count = 0;
     std::size_t max_points = 0;
     double facet_angle_deg = 0;
     double tet_min_dihedral_deg = 0, tet_max_dihedral_deg = 180;
@@ -89,6 +89,7 @@ MeshOptions mesh_options(const MeshArgs& a)
     mo.snap = a.snap;
     mo.certify = a.certify;
     mo.block_voxels = a.block_voxels;
+    mo.block_count = a.block_count;
     mo.release_blocks = a.release_blocks;
     mo.tets = parse_tets(a.tets);
     mo.improve_tets = a.improve_tets;
@@ -337,6 +338,7 @@ PYBIND11_MODULE(_isodel, m)
         .def_readwrite("threads", &MeshArgs::threads)
         .def_readwrite("max_rounds", &MeshArgs::max_rounds)
         .def_readwrite("block_voxels", &MeshArgs::block_voxels)
+        .def_readwrite("block_count", &MeshArgs::block_count)
         .def_readwrite("release_blocks", &MeshArgs::release_blocks)
         .def_readwrite("max_points", &MeshArgs::max_points)
         .def_readwrite("facet_angle_deg", &MeshArgs::facet_angle_deg)

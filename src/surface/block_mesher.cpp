@@ -38,6 +38,7 @@ BlockMesher::BlockMesher(const octree::SampleField& field, const BlockSpec& bloc
     options_.threads = 0; // the caller's limit holds; nested TBB work shares it
     options_.tets = TetRegion::None;
     options_.block_voxels = 0;
+    options_.block_count = 0;
     // eps in world units of the whole field, so that every block refines to the same bound.
     if (options_.eps <= 0) options_.eps = options.eps_voxels * field.min_voxel_edge();
     st_.effective_isovalue = field.effective_isovalue();

@@ -14,7 +14,7 @@
 namespace isodel::mesher {
 
 /// mesh_isosurface(grid, options, interrupter), and in \p points the final point set in
-/// insertion (id) order, world coordinates. \throw InvalidInput with options.block_voxels > 0
+/// insertion (id) order, world coordinates. \throw InvalidInput with partitioned meshing
 MeshResult mesh_keeping_points(const openvdb::FloatGrid& grid, const MeshOptions& options,
                                std::vector<std::array<double, 3>>& points, Interrupter* interrupter = nullptr);
 

@@ -34,9 +34,10 @@ using Clock = std::chrono::steady_clock;
 MeshResult mesh_once(const octree::SampleField& field, const octree::AdaptiveGrid* adaptive,
                      const MeshOptions& options, Interrupter* interrupter, std::vector<std::array<double, 3>>* points)
 {
-    if (options.block_voxels > 0) {
-        if (adaptive) throw InvalidInput("partitioned meshing (block_voxels) is for dense grids only");
-        if (points) throw InvalidInput("partitioned meshing (block_voxels) does not keep the final point set");
+    if (options.block_voxels > 0 || options.block_count > 0) {
+        if (adaptive) throw InvalidInput("partitioned meshing (block_voxels, block_count) is for dense grids only");
+        if (points)
+            throw InvalidInput("partitioned meshing (block_voxels, block_count) does not keep the final point set");
         return mesh_partitioned(field, options, interrupter);
     }
     FieldRun run;
@@ -232,8 +233,14 @@ void check_mesh_options(const MeshOptions& o)
     if (o.block_voxels < 0 || (o.block_voxels > 0 && o.block_voxels < kMinBlockVoxels))
         refuse("block_voxels must be 0 (off) or at least " + std::to_string(kMinBlockVoxels) +
                " (smaller blocks mesh their collars over and over; got " + std::to_string(o.block_voxels) + ")");
-    if (o.release_blocks && o.block_voxels == 0)
-        refuse("release_blocks needs block_voxels: without blocks there is nothing to release");
+    if (o.block_count < 0 || o.block_count > kMaxBlocks)
+        refuse("block_count must be 0 (off) or in [1, " + std::to_string(int(kMaxBlocks)) + "] (got " +
+               std::to_string(o.block_count) + ")");
+    if (o.block_count > 0 && o.block_voxels > 0)
+        refuse("block_count and block_voxels are two ways to cut the blocks: give one of them");
+    const bool partitioned = o.block_voxels > 0 || o.block_count > 0;
+    if (o.release_blocks && !partitioned)
+        refuse("release_blocks needs block_voxels or block_count: without blocks there is nothing to release");
     // A triangle's smallest angle is at most 60 degrees: a larger bound can never be met.
     if (!(o.facet_angle_deg >= 0) || o.facet_angle_deg > 60)
         refuse("facet_angle_deg must be in [0, 60] (got " + num(o.facet_angle_deg) + ")");
@@ -255,9 +262,10 @@ void check_mesh_options(const MeshOptions& o)
         refuse("adaptive_max_level must be in [0, 15] (got " + std::to_string(o.adaptive_max_level) + ")");
     if (!(o.adaptive_min_saving >= 0 && o.adaptive_min_saving < 1))
         refuse("adaptive_min_saving must be in [0, 1) (got " + num(o.adaptive_min_saving) + ")");
-    if (o.adaptive && o.block_voxels > 0)
-        refuse("adaptive meshing cannot be combined with partitioned meshing (block_voxels) yet");
-    if (o.transport && o.block_voxels == 0) refuse("a transport (several processes) needs block_voxels > 0");
+    if (o.adaptive && partitioned)
+        refuse("adaptive meshing cannot be combined with partitioned meshing (block_voxels, block_count) yet");
+    if (o.transport && !partitioned)
+        refuse("a transport (several processes) needs block_voxels or block_count > 0");
     if (o.transport && o.tets != TetRegion::None)
         refuse("tetrahedra cannot be meshed by several processes yet (a transport with tets)");
     if (o.transport && o.certify) refuse("certify cannot be combined with several processes yet (a transport)");

@@ -26,15 +26,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::array<int, 3> block_count(const octree::SampleField& field, int block_voxels)
-{
-    const openvdb::CoordBBox& d = field.domain();
-    std::array<int, 3> n{};
-    // The cells of the domain have lower corners min .. max - 1.
-    for (int a = 0; a < 3; ++a) n[a] = std::max(1, (d.max()[a] - d.min()[a] + block_voxels - 1) / block_voxels);
-    return n;
-}
-
 /// Calls the user's interrupter from worker threads one at a time (OpenVDB interrupters are
 /// not thread-safe). Blocks poll it through BlockInterrupter between their rounds, so a
 /// cancellation stops every block promptly (TBB rethrows the first Cancelled to the caller).
@@ -78,41 +69,6 @@ std::array<int, 3> collar_voxels(const octree::SampleField& field)
     return {2 * r[0] + 4, 2 * r[1] + 4, 2 * r[2] + 4};
 }
 
-std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int block_voxels,
-                                        const std::array<int, 3>& collar)
-{
-    if (block_voxels < 1) throw InvalidInput("block size must be at least one voxel");
-    const openvdb::Coord o = field.domain().min();
-    const std::array<int, 3> n = block_count(field, block_voxels);
-    const double count = double(n[0]) * n[1] * n[2];
-    if (count > kMaxBlocks) {
-        std::ostringstream os;
-        os << "block size " << block_voxels << " cuts the domain into " << count << " blocks, more than " << kMaxBlocks
-           << ": choose larger blocks";
-        throw InvalidInput(os.str());
-    }
-    std::vector<BlockSpec> out;
-    for (int z = 0; z < n[2]; ++z)
-        for (int y = 0; y < n[1]; ++y)
-            for (int x = 0; x < n[0]; ++x) {
-                BlockSpec b;
-                b.index = {x, y, z};
-                const openvdb::Coord lo = o + openvdb::Coord(x * block_voxels, y * block_voxels, z * block_voxels);
-                b.core = openvdb::CoordBBox(lo, lo.offsetBy(block_voxels - 1));
-                // Samples of the core's cells are lo .. lo + B; the collar grows them.
-                b.box = openvdb::CoordBBox(lo.offsetBy(-collar[0], -collar[1], -collar[2]),
-                                           lo.offsetBy(block_voxels + collar[0], block_voxels + collar[1],
-                                                       block_voxels + collar[2]));
-                const int index[3] = {x, y, z};
-                for (int a = 0; a < 3; ++a) {
-                    b.own_lo[a] = index[a] == 0 ? -HUGE_VAL : lo[a];
-                    b.own_hi[a] = index[a] == n[a] - 1 ? HUGE_VAL : lo[a] + block_voxels;
-                }
-                out.push_back(b);
-            }
-    return out;
-}
-
 namespace {
 
 using Blocks = std::vector<std::unique_ptr<BlockMesher>>;
@@ -142,63 +98,6 @@ void for_my_blocks(const BlockRanks& ranks, std::size_t n, SharedInterrupter& sh
     ranks.agree(failure);
 }
 
-/// The block lattice's size per axis (partition_domain's order: x fastest, then y, then z).
-std::array<int, 3> lattice_dims(const std::vector<BlockSpec>& specs)
-{
-    return {specs.back().index[0] + 1, specs.back().index[1] + 1, specs.back().index[2] + 1};
-}
-
-/// The index of the block at lattice position (x, y, z).
-std::size_t lattice_index(const std::array<int, 3>& dims, int x, int y, int z)
-{
-    return (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
-}
-
-/// The blocks whose boxes may read points of block \p i: its neighbours within \p reach blocks
-/// per axis, found on the block lattice (partition_domain's order: x fastest, then y, then z).
-std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::size_t i, const std::array<int, 3>& reach)
-{
-    const std::array<int, 3> dims = lattice_dims(specs);
-    const std::array<int, 3>& c = specs[i].index;
-    std::vector<std::size_t> out;
-    for (int z = std::max(0, c[2] - reach[2]); z <= std::min(dims[2] - 1, c[2] + reach[2]); ++z)
-        for (int y = std::max(0, c[1] - reach[1]); y <= std::min(dims[1] - 1, c[1] + reach[1]); ++y)
-            for (int x = std::max(0, c[0] - reach[0]); x <= std::min(dims[0] - 1, c[0] + reach[0]); ++x) {
-                const std::size_t j = lattice_index(dims, x, y, z);
-                if (j != i) out.push_back(j);
-            }
-    return out;
-}
-
-/// Each block's share of the work, the same on every process: the grid-edge crossings in its box
-/// (E, and with it G and N, grow with them; the Delaunay triangulation and the checks follow the
-/// points), plus one for a block's own set-up. Only for dealing blocks to processes.
-std::vector<double> block_work(const octree::SampleField& field, const std::vector<BlockSpec>& specs)
-{
-    std::vector<double> work(specs.size(), 1.0);
-    const std::array<int, 3> dims = lattice_dims(specs);
-    const openvdb::Coord lo0 = specs.front().core.min();
-    const openvdb::Coord step = specs.front().core.dim();
-    const openvdb::Coord reach = specs.front().core.min() - specs.front().box.min();
-    for (const octree::EdgePoint& e : octree::edge_crossings(field).points) {
-        // The blocks whose box may hold e.lower, one block beyond either way for the clipped
-        // boxes at the domain's faces; the box test decides.
-        int from[3], to[3];
-        for (int a = 0; a < 3; ++a) {
-            const int x = e.lower[a] - lo0[a];
-            from[a] = std::max(0, (x - reach[a] - step[a]) / step[a] - 1);
-            to[a] = std::min(dims[a] - 1, (x + reach[a]) / step[a] + 1);
-        }
-        for (int z = from[2]; z <= to[2]; ++z)
-            for (int y = from[1]; y <= to[1]; ++y)
-                for (int x = from[0]; x <= to[0]; ++x) {
-                    const std::size_t j = lattice_index(dims, x, y, z);
-                    if (specs[j].box.isInside(e.lower)) work[j] += 1;
-                }
-    }
-    return work;
-}
-
 /// Every block's new points, from every process: (block, x, y, z, kind) per point, in block order.
 std::vector<std::vector<SeedPoint>> gather_new_points(Blocks& blocks, const BlockRanks& ranks)
 {
@@ -216,13 +115,13 @@ std::vector<std::vector<SeedPoint>> gather_new_points(Blocks& blocks, const Bloc
 
 /// Exchanges points until no block receives one (partitioned_meshing.h); returns the rounds.
 /// \p inserted collects the N points the blocks inserted, round by round in block order.
-int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs, const std::array<int, 3>& reach,
+int exchange_points(Blocks& blocks, const std::vector<BlockSpec>& specs,
                     const BlockRanks& ranks, SharedInterrupter& shared, PartitionStats& ps,
                     std::vector<SeedPoint>& inserted, bool release)
 {
     const std::size_t n = blocks.size();
     std::vector<std::vector<std::size_t>> near(n);
-    for (std::size_t j : ranks.mine(n)) near[j] = neighbours(specs, j, reach);
+    for (std::size_t j : ranks.mine(n)) near[j] = neighbours(specs, j);
     for (int round = 1;; ++round) {
         const std::vector<std::vector<SeedPoint>> fresh = gather_new_points(blocks, ranks);
         for (const auto& list : fresh)
@@ -372,12 +271,15 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
     MeshStats& st = result.stats;
     PartitionStats& ps = st.partition;
     std::vector<SeedPoint> inserted;
+    // The grid-edge crossings place the balanced cuts and weigh the blocks dealt to processes.
+    std::vector<octree::EdgePoint> crossings;
+    if (options.block_count > 0 || ranks.size() > 1) crossings = octree::edge_crossings(field).points;
+    const BlockCuts cuts = options.block_count > 0 ? balanced_cuts(field, options.block_count, crossings)
+                                                   : cubic_cuts(field, options.block_voxels);
     for (int growth = 0;; ++growth) {
-        const std::vector<BlockSpec> specs = partition_domain(field, options.block_voxels, collar);
+        const std::vector<BlockSpec> specs = blocks_of(cuts, collar);
         const std::size_t n = specs.size();
-        if (ranks.size() > 1) ranks.deal(block_work(field, specs));
-        std::array<int, 3> reach{};
-        for (int a = 0; a < 3; ++a) reach[a] = (collar[a] + options.block_voxels) / options.block_voxels;
+        if (ranks.size() > 1) ranks.deal(block_work(specs, crossings));
         Blocks blocks(n);
         // A block's refiner keeps its interrupter across the rounds: one per block, all sharing
         // the caller's through SharedInterrupter.
@@ -393,7 +295,7 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
                 if (options.release_blocks) blocks[i]->park();
             });
             ps.exchange_rounds =
-                exchange_points(blocks, specs, reach, ranks, shared, ps, inserted, options.release_blocks);
+                exchange_points(blocks, specs, ranks, shared, ps, inserted, options.release_blocks);
         }
         sum_block_stats(blocks, ranks, st);
         ps.block_rebuilds = count_rebuilds(blocks, ranks);

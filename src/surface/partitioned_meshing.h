@@ -22,6 +22,7 @@
 // With tetrahedra, the blocks' points (E, G and the exchanged N) are merged into one Delaunay
 // triangulation for DELVOLMESH, whose loop re-checks every guarantee there first.
 #include "surface/block_mesher.h"
+#include "surface/block_partition.h"
 #include "surface/mesh_field.h"
 
 #include <openvdb/openvdb.h>
@@ -35,19 +36,19 @@ namespace isodel::mesher {
 /// (the trusted margin r + 2, and two voxels of Voronoi cells beyond the core).
 std::array<int, 3> collar_voxels(const octree::SampleField& field);
 
-/// Partitions of more blocks than this are refused: every block costs a task and a clipped
-/// field even when empty, so a tiny block size on a large box would run for hours.
-constexpr double kMaxBlocks = 1e6;
 /// Rounds of point exchange before the run is given up (GuaranteeViolated).
 constexpr int kMaxExchangeRounds = 64;
 /// Times the collar grows by two voxels when an owned facet's ball leaves its block.
 constexpr int kMaxCollarGrowths = 3;
 
 /// Blocks of \p block_voxels cells per axis covering the cells of field.domain(), in
-/// lexicographic (z, y, x) order.
+/// lexicographic (z, y, x) order (blocks_of(cubic_cuts(...))).
 /// \throw InvalidInput block_voxels < 1, or more than kMaxBlocks blocks
-std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int block_voxels,
-                                        const std::array<int, 3>& collar);
+inline std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int block_voxels,
+                                               const std::array<int, 3>& collar)
+{
+    return blocks_of(cubic_cuts(field, block_voxels), collar);
+}
 
 /// Assembles the blocks' triangles into one indexed mesh: vertices by first appearance (blocks
 /// in order), triangles ordered as extract_surface orders them. Returns false, leaving \p mesh
@@ -55,7 +56,8 @@ std::vector<BlockSpec> partition_domain(const octree::SampleField& field, int bl
 bool assemble_surface(const std::vector<BlockSurface>& parts, SurfaceMesh& mesh);
 
 /// Partitioned DELSURFMESH as described above (TBB tasks, one per block).
-/// Output depends on options.block_voxels, never on the thread count.
+/// Output depends on the partition (options.block_voxels or block_count), never on the thread or
+/// process count.
 MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter);
 
 } // namespace isodel::mesher

@@ -198,6 +198,16 @@ TEST_CASE("usage errors: exit 2 and one line", "[cli][errors]")
     CHECK(tiny.err.find("at least 4") != std::string::npos);
     CHECK(std::count(tiny.err.begin(), tiny.err.end(), '\n') == 1);
     CHECK(!std::filesystem::exists(out));
+    // Two ways to cut the blocks at once, and more blocks than the volume has room for.
+    const std::string blobs = shell_quote(std::string(ISODEL_TEST_DATA) + "/two_blobs.mrc");
+    for (const char* cut : {"--blocks 8 --block-count 2", "--block-count 100000"}) {
+        INFO(cut);
+        const RunResult r = run_isodel("mesh " + blobs + " --iso 0.5 " + cut + " -o " + shell_quote(out), scratch.path());
+        CHECK(r.status == 2);
+        CHECK(r.err.rfind("isodel: ", 0) == 0);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK(!std::filesystem::exists(out));
+    }
     const RunResult help = run_isodel("mesh --help", scratch.path());
     CHECK(help.status == 0);
     for (const char* opt : {"--iso", "--grid", "--inside", "--eps", "--eps-voxels", "--tets", "--region", "--threads",

@@ -1,6 +1,7 @@
 // `mpirun -np N isodel mesh ... --blocks B` (docs/partitioned.md): the blocks spread over MPI
 // processes give the thread engine's mesh byte for byte at any process count, and that mesh
-// verifies; without --blocks the run is refused; a process that fails ends the run everywhere
+// verifies, for cubes (--blocks) and for a count of blocks (--block-count); without either the
+// run is refused; a process that fails ends the run everywhere
 // with one message naming the block, and nothing is written.
 #include "support/json.h"
 #include "support/skip.h"
@@ -57,6 +58,24 @@ TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verif
         CHECK(s.at("partition").at("processes").get<int>() == np);
         CHECK(s.at("topology").at("components").get<int>() == 1);
     }
+    // --block-count 2 (two slabs of about equal work, one per process): 2 processes write the
+    // thread engine's mesh with the same option, and it verifies.
+    const std::string count_threads = tmp / "count_threads.ply", count_np2 = tmp / "count_np2.ply";
+    const std::string by_count = " --iso 0 --eps-voxels 0.25 --block-count 2 --quiet";
+    const RunResult ct = run_isodel("mesh " + shell_quote(torus) + by_count + " --threads 2 -o " + shell_quote(count_threads),
+                                    tmp.path());
+    INFO(ct.err);
+    REQUIRE(ct.status == 0);
+    const RunResult cm = run_mpi(2, "mesh " + shell_quote(torus) + by_count + " --threads 1 -o " + shell_quote(count_np2),
+                                 tmp.path());
+    INFO(cm.err);
+    REQUIRE(cm.status == 0);
+    CHECK(read_text(count_np2) == read_text(count_threads));
+    const RunResult cv = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.25 --mesh " +
+                                        shell_quote(count_np2),
+                                    tmp.path());
+    INFO(cv.out << cv.err);
+    CHECK(cv.status == 0);
     // --release-blocks (one block alive per thread, rebuilt when points arrive): 2 processes
     // write the thread engine's mesh with the same option, and it verifies.
     const std::string released_threads = tmp / "released_threads.ply", released = tmp / "released.ply";

@@ -128,3 +128,17 @@ def test_threads_do_not_change_the_mesh(data):
     np.testing.assert_array_equal(one.vertices, two.vertices)
     np.testing.assert_array_equal(one.triangles, two.triangles)
     assert [c["genus"] for c in one.stats["topology"]["per_component"]] == [1]
+
+
+def test_block_count_matches_cli(tmp_path, cli, data):
+    # Two blocks of about equal work, as the CLI's --block-count: the same mesh, at 1 and 2 threads.
+    ref_v, ref_t = cli_mesh(cli, data / "torus.vdb", tmp_path / "ref.ply", 0.0, "--eps-voxels", "0.5",
+                            "--block-count", "2")
+    for threads in (1, 2):
+        m = isodel.mesh(data / "torus.vdb", 0.0, eps_voxels=0.5, block_count=2, threads=threads)
+        assert m.stats["partition"]["blocks"] == 2
+        np.testing.assert_array_equal(m.vertices, ref_v)
+        np.testing.assert_array_equal(m.triangles, ref_t)
+    assert [c["genus"] for c in m.stats["topology"]["per_component"]] == [1]
+    with pytest.raises(ValueError, match="block_count"):
+        isodel.mesh(data / "torus.vdb", 0.0, block_count=2, block_voxels=16)

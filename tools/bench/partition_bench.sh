@@ -2,14 +2,20 @@
 # partition_bench.sh VOLUME ISO EPS_VOXELS BLOCK [BIN_DIR] [INSIDE]
 # Partitioned meshing (docs/partitioned.md) against one process, same run, on this machine:
 #   one process, 1 thread, no blocks (the baseline); one process, 2 threads, no blocks;
-#   --blocks on 2 threads (the thread engine); mpirun -np 2 with 1 thread per process;
+#   the blocks on 2 threads (the thread engine); mpirun -np 2 with 1 thread per process;
 #   mpirun -np 8 --oversubscribe with 1 thread per process, without and with --release-blocks.
+# BLOCK: a number B for --blocks B (cubes), or count=N for --block-count N (N blocks of about
+# equal work; the -np 8 rows are left out, since eight processes would share N blocks).
 # Prints a markdown table: wall seconds, the largest peak memory of one process, vertices, and
 # both as ratios to the baseline. Every partitioned mesh must equal the thread engine's, byte
 # for byte (the column "same mesh"; a --release-blocks run may differ from it, see docs/partitioned.md).
 set -u
 VOL=$1; ISO=$2; EPS=$3; B=$4; BIN=${5:-build/bin}; INSIDE=${6:-above}
 OUT=$(mktemp -d); trap 'rm -rf "$OUT"' EXIT
+case $B in
+  count=*) PART="--block-count ${B#count=}"; WIDE=0 ;;
+  *) PART="--blocks $B"; WIDE=1 ;;
+esac
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 run() { # NAME LAUNCHER... -- ISODEL ARGS
   local name=$1; shift
@@ -22,11 +28,13 @@ run() { # NAME LAUNCHER... -- ISODEL ARGS
 }
 EXTRA="--threads 1" run one_1t "$BIN/isodel"
 EXTRA="--threads 2" run one_2t "$BIN/isodel"
-EXTRA="--threads 2 --blocks $B" run blocks_2t "$BIN/isodel"
-EXTRA="--threads 1 --blocks $B" run mpi_np2 mpirun -np 2 --bind-to none "$BIN/isodel"
-EXTRA="--threads 1 --blocks $B" run mpi_np8 mpirun -np 8 --bind-to none "$BIN/isodel"
-EXTRA="--threads 1 --blocks $B --release-blocks" run mpi_np8_rel mpirun -np 8 --bind-to none "$BIN/isodel"
-/usr/bin/python3 - "$OUT" <<'PY'
+EXTRA="--threads 2 $PART" run blocks_2t "$BIN/isodel"
+EXTRA="--threads 1 $PART" run mpi_np2 mpirun -np 2 --bind-to none "$BIN/isodel"
+if [ $WIDE = 1 ]; then
+  EXTRA="--threads 1 $PART" run mpi_np8 mpirun -np 8 --bind-to none "$BIN/isodel"
+  EXTRA="--threads 1 $PART --release-blocks" run mpi_np8_rel mpirun -np 8 --bind-to none "$BIN/isodel"
+fi
+PART="$PART" /usr/bin/python3 - "$OUT" <<'PY'
 import json, os, sys
 out = sys.argv[1]
 times = dict(l.split() for l in open(os.path.join(out, "times")))
@@ -40,7 +48,7 @@ ref = open(os.path.join(out, "blocks_2t.ply"), "rb").read() if os.path.exists(os
 print("| run | wall s | vs 1 process 1 thread | peak memory per process | vs baseline | vertices | blocks, rounds | same mesh |")
 print("| --- | ---: | ---: | ---: | ---: | ---: | --- | --- |")
 for name, label in [("one_1t", "1 process, 1 thread"), ("one_2t", "1 process, 2 threads"),
-                    ("blocks_2t", "--blocks, 2 threads"), ("mpi_np2", "mpirun -np 2, 1 thread each"),
+                    ("blocks_2t", "blocks (" + os.environ.get("PART", "") + "), 2 threads"), ("mpi_np2", "mpirun -np 2, 1 thread each"),
                     ("mpi_np8", "mpirun -np 8, 1 thread each"),
                     ("mpi_np8_rel", "mpirun -np 8, 1 thread each, --release-blocks")]:
     if name not in times: continue

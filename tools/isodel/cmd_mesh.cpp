@@ -23,6 +23,7 @@ struct MeshCliOptions {
     int threads = 0;
     int max_rounds = 2000;
     int blocks = 0;
+    int block_count = 0;
     std::size_t max_points = 0;
     bool quiet = false;
     bool trace = false;
@@ -103,8 +104,14 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                     "Partitioned meshing (paper Fig. 8): blocks of this many voxels per axis, meshed "
                     "concurrently with protective collars, then merged (dense grids; 0 = off, else at least 4)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--block-count", o->block_count,
+                    "Partitioned meshing into this many blocks of about equal work (the grid-edge crossings), "
+                    "slabs of the longest axes, instead of --blocks' cubes: one per process or thread wastes "
+                    "the least on collars (0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->excludes("--blocks");
     cmd->add_flag("--release-blocks", o->release_blocks,
-                  "With --blocks: hold one block per thread in memory, rebuilding a block from its points when "
+                  "With --blocks or --block-count: hold one block per thread in memory, rebuilding a block from its points when "
                   "a neighbour's arrive (less memory per process, more time)");
     cmd->add_flag("--certify", o->certify,
                   "Verify the surface before writing it (topology against an independent computation, eps, "
@@ -149,6 +156,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.snap = o->snap;
         mo.certify = o->certify;
         mo.block_voxels = o->blocks;
+        mo.block_count = o->block_count;
         mo.release_blocks = o->release_blocks;
         if (!o->tets.empty())
             mo.tets = o->region == "both"      ? TetRegion::Both
@@ -176,9 +184,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         // process reports progress and writes the mesh.
         MpiSession& mpi = mpi_session();
         if (mpi.several()) {
-            if (mo.block_voxels == 0)
+            if (mo.block_voxels == 0 && mo.block_count == 0)
                 throw InvalidInput("isodel mesh under mpirun with " + std::to_string(mpi.size()) +
-                                   " processes needs --blocks B (the blocks are what the processes share)");
+                                   " processes needs --blocks B or --block-count N (the blocks are what the "
+                                   "processes share)");
             mo.transport = mpi.transport();
             check_mesh_options(mo);
         }
@@ -210,6 +219,8 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         }
         catch (const GuaranteeViolated& e) {
             throw GuaranteeViolated(o->in.path + ": " + e.what()); // name the file (exit status 1)
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(o->in.path + ": " + e.what()); // what this volume cannot take (exit status 2)
         }
 
         if (mpi.rank() != 0) return; // the first process holds the mesh and writes it

@@ -113,7 +113,7 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
          improve_tets: bool = True, facet_angle_deg: float = 0.0, block_voxels: int = 0,
          max_rounds: int = 2000, max_points: int = 0, tet_spacing: str = "graded",
          tet_size: float = 0.0, tet_grading: float = 0.5, tet_min_dihedral_deg: float = 0.0,
-         tet_max_dihedral_deg: float = 180.0, release_blocks: bool = False) -> Mesh:
+         tet_max_dihedral_deg: float = 180.0, release_blocks: bool = False, block_count: int = 0) -> Mesh:
     """Mesh the level set {F = iso} of a volume, with guarantees (as `isodel mesh`).
 
     volume: a 3-d numpy array (any float or integer dtype; read in place, not copied first), a
@@ -141,9 +141,9 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
         (fraction in [0, 1], or -1 when the stage does not know); return False to cancel
         (Cancelled is raised). Ctrl-C cancels too (KeyboardInterrupt).
     grid: .vdb paths: the name of the grid to read (default: the first float grid).
-    snap, improve_tets, facet_angle_deg, block_voxels, release_blocks, max_rounds, max_points: as
-        the CLI's --snap, --no-improve-tets, --facet-angle, --blocks, --release-blocks,
-        --max-rounds, --max-points.
+    snap, improve_tets, facet_angle_deg, block_voxels, block_count, release_blocks, max_rounds,
+        max_points: as the CLI's --snap, --no-improve-tets, --facet-angle, --blocks,
+        --block-count, --release-blocks, --max-rounds, --max-points.
 
     Returns a Mesh (vertices, triangles, tet_vertices, tets, regions, stats, to_meshio()).
     Raises ValueError (bad input, the CLI's message), OSError (unreadable file),
@@ -165,6 +165,7 @@ def mesh(volume: Any, iso: float, *, eps_voxels: Optional[float] = None, eps: Op
     args.threads = threads
     args.max_rounds = int(max_rounds)
     args.block_voxels = int(block_voxels)
+    args.block_count = int(block_count)
     args.release_blocks = bool(release_blocks)
     args.max_points = int(max_points)
     args.facet_angle_deg = float(facet_angle_deg)
