@@ -386,8 +386,7 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
     // The corners' field: the input's own unless they come from elsewhere (no second scan).
     std::optional<SampleField> extended;
     if (corner_samples != fine.grid_ptr()) {
-        extended.emplace(corner_samples, fine.isovalue(), fine.inside());
-        extended->set_effective_isovalue(fine.effective_isovalue());
+        extended.emplace(corner_samples, fine.isovalue(), fine.inside(), fine.effective_isovalue());
     }
     coarsen_bottom_up(g, fine, extended ? *extended : fine, budget, edges, intr);
 
@@ -396,8 +395,8 @@ CertifiedGrid certified_coarsening(const SampleField& fine, const CoarseningBudg
     for (;;) {
         check_coarsening_interrupt(intr, 50);
         out.resampled = resample_dense(g, fine.grid());
-        SampleField& coarse = out.field.emplace(out.resampled, fine.isovalue(), fine.inside());
-        coarse.set_effective_isovalue(fine.effective_isovalue());
+        SampleField& coarse =
+            out.field.emplace(out.resampled, fine.isovalue(), fine.inside(), fine.effective_isovalue());
         const auto cells = cells_to_certify(g, fine, coarse);
         std::vector<CertificateFailure> failed(cells.size(), CertificateFailure::None);
         std::vector<double> distance(cells.size(), 0);

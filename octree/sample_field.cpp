@@ -126,6 +126,17 @@ void scan_critical_values(const openvdb::FloatGrid& grid, const CoordBBox& latti
 } // namespace
 
 SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside)
+    : SampleField(std::move(grid), isovalue, inside, std::nullopt)
+{
+}
+
+SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside, double v_star)
+    : SampleField(std::move(grid), isovalue, inside, std::optional<double>(v_star))
+{
+}
+
+SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside,
+                         std::optional<double> v_star)
     : grid_(std::move(grid)), isovalue_(isovalue), effective_(isovalue), inside_(inside),
       sign_(inside == Inside::Above ? 1.0 : -1.0)
 {
@@ -150,7 +161,9 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
     // lattice is its box, and a background at or inside v - MRC's 0 at v = 0 - would wrap the
     // box in a spurious shell); inside the lattice, inactive voxels read it whenever they exist.
     if (ring_reads_background_ || std::uint64_t(grid_->activeVoxelCount()) < active.volume()) scan.consider(bg);
-    scan_critical_values(*grid_, lattice_, ring_reads_background_, scan);
+    // The saddles matter for the range check below only when v is not strictly inside the range.
+    if (!v_star || !(isovalue > scan.vmin && isovalue < scan.vmax))
+        scan_critical_values(*grid_, lattice_, ring_reads_background_, scan);
     const double vmin = scan.vmin, vmax = scan.vmax, gap = scan.gap;
     const bool tie = scan.tie;
     vmin_ = vmin;
@@ -161,7 +174,9 @@ SampleField::SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Ins
            << "] of grid '" << grid_->getName() << "': the level set is empty";
         throw InvalidInput(os.str());
     }
-    if (tie) {
+    if (v_star) {
+        effective_ = *v_star;
+    } else if (tie) {
         const double span = vmax - vmin;
         double d = std::min(0.5 * gap, 1e-2 * span);
         if (!(d > 0)) d = 1e-2 * span;

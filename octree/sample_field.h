@@ -34,6 +34,8 @@
 
 #include <openvdb/openvdb.h>
 
+#include <optional>
+
 namespace isodel::octree {
 
 using openvdb::Coord;
@@ -44,6 +46,14 @@ class SampleField {
 public:
     /// \throw InvalidInput empty grid, or \p isovalue outside the value range of the domain.
     SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside);
+
+    /// The same field read at a given level \p v_star instead of the tie rule's own (the adaptive
+    /// path reads its coarse fields at the input's v*, see set_effective_isovalue). The face and
+    /// cell saddles decide only the tie rule's shift, so they are not scanned, unless \p isovalue
+    /// lies outside the samples' open range, where a tie decides whether the level set is empty
+    /// (a saddle lies within its corners' range, so only within rounding of its end). Everything
+    /// else (range, outside value) is what the constructor above gives.
+    SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside, double v_star);
 
     /// \p parent seen through the box \p clip (sample coordinates): the same samples, level v*
     /// and outside value inside it, "outside" beyond it, so its Sigma is \p parent's Sigma inside
@@ -138,6 +148,9 @@ public:
     };
 
 private:
+    /// Both public constructors: \p v_star given or the tie rule's.
+    SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside, std::optional<double> v_star);
+
     openvdb::FloatGrid::ConstPtr grid_;
     CoordBBox domain_;
     CoordBBox lattice_;                 ///< the active bounding box
