@@ -1,8 +1,8 @@
 // Partitioned meshing on real volumes (its acceptance criterion: "partitioned and unpartitioned
 // runs give meshes that both verify"): the CT skull, both blurred-atom proteins and the EMD-3001
-// cryo-EM map (sheared transform) are meshed unpartitioned and in blocks of 24 voxels (8 to 27
+// cryo-EM map (sheared transform) are meshed unpartitioned, in blocks of 24 voxels (8 to 27
 // blocks each; much smaller blocks multiply the collars and the seams the merge must fix, and
-// cost more than they save), and each mesh is
+// cost more than they save) and in three blocks of about equal work, and each mesh is
 // certified by isodel verify (topology against the independent reference, Hausdorff distance,
 // exact Delaunay conformity) and matched against the manifest's expected topology
 // where it is settled. Label "corpus".
@@ -26,13 +26,15 @@ TEST_CASE("partitioned and unpartitioned meshes of the shared volumes both verif
         REQUIRE(entry != nullptr);
         const auto& e = *entry;
         const auto grid = testing::read_vdb(testing::shared_data() + "/" + file, testing::json_string(e, "grid_name"));
-        for (int blocks : {0, 24}) {
-            INFO(file << ", blocks of " << blocks << " voxels (0 = unpartitioned)");
+        // Unpartitioned, cubes of 24 voxels, and three blocks of about equal work (--block-count 3).
+        for (const auto& [blocks, count] : {std::pair<int, int>{0, 0}, {24, 0}, {0, 3}}) {
+            INFO(file << ", blocks of " << blocks << " voxels (0 = unpartitioned), block count " << count);
             MeshOptions mo;
             mo.isovalue = testing::json_number(e, "isovalue");
             mo.inside = testing::inside_of(e);
             mo.eps_voxels = 0.5;
             mo.block_voxels = blocks;
+            mo.block_count = count;
             const MeshResult m = mesh_isosurface(*grid, mo);
             VerifyOptions vo;
             vo.isovalue = mo.isovalue;
@@ -42,7 +44,8 @@ TEST_CASE("partitioned and unpartitioned meshes of the shared volumes both verif
             INFO(rep.summary());
             CHECK(rep.passed());
             CHECK(rep.topology_verdict == TopologyVerdict::Pass);
-            if (blocks > 0) {
+            if (count > 0) CHECK(m.stats.partition.blocks == count);
+            if (blocks > 0 || count > 0) {
                 CHECK(m.stats.partition.blocks > 1);
                 CHECK(m.stats.partition.exchange_rounds >= 1);
             }
