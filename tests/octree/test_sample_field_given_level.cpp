@@ -3,33 +3,15 @@
 // the scanned field with that level set, sample for sample, and accept or refuse the value range
 // as the scanned field does (v at the end of the range: accepted only through a tie).
 #include "octree/sample_field.h"
+#include "support/random_volume.h"
 
 #include <isodel/errors.h>
 
 #include <catch2/catch.hpp>
 
-#include <random>
-
 using namespace isodel::octree;
 
 namespace {
-
-/// n^3 random samples in [-1, 1] (boundary layer -1), optionally one of them exactly 0.
-openvdb::FloatGrid::Ptr random_grid(int n, unsigned seed, bool sample_at_zero)
-{
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-1.f, 1.f);
-    auto g = openvdb::FloatGrid::create(-1.f);
-    auto acc = g->getAccessor();
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const bool boundary = x == 0 || y == 0 || z == 0 || x == n - 1 || y == n - 1 || z == n - 1;
-                acc.setValueOn(Coord(x, y, z), boundary ? -1.f : u(rng));
-            }
-    if (sample_at_zero) acc.setValueOn(Coord(n / 2, n / 2, n / 2), 0.f);
-    return g;
-}
 
 void check_same_field(const SampleField& given, const SampleField& scanned)
 {
@@ -51,7 +33,8 @@ TEST_CASE("a field at a given level is the scanned field with that level", "[oct
 {
     for (bool tie : {false, true}) {
         INFO((tie ? "a sample at v" : "no sample at v"));
-        const auto g = random_grid(10, 5, tie);
+        // Quantized samples: many at v; continuous ones: none (the shift is then 0).
+        const auto g = isodel::testing::random_volume(8, 5, tie);
         for (isodel::Inside side : {isodel::Inside::Above, isodel::Inside::Below}) {
             SampleField scanned(g, 0.0, side);
             CHECK((scanned.effective_isovalue() < 0.0) == tie);
