@@ -170,17 +170,26 @@ std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::si
 {
     const std::array<int, 3> dims = lattice_dims(specs);
     const BlockSpec& b = specs[i];
-    // Per axis the positions whose boxes meet b's own region (own_lo <= q < own_hi) there.
-    std::array<std::vector<int>, 3> near;
-    for (int a = 0; a < 3; ++a)
-        for (int x = 0; x < dims[a]; ++x) {
-            const openvdb::CoordBBox& box = along(specs, dims, a, x).box;
-            if (box.min()[a] < b.own_hi[a] && box.max()[a] >= b.own_lo[a]) near[a].push_back(x);
-        }
+    // Per axis the positions whose boxes meet b's own region (own_lo <= q < own_hi) there: a
+    // contiguous run, since the boxes' ends grow along the lattice (two binary searches).
+    int from[3], to[3];
+    for (int a = 0; a < 3; ++a) {
+        const auto first_where = [&](auto&& pred) { // the first position where pred holds, or dims[a]
+            int lo = 0, hi = dims[a];
+            while (lo < hi) {
+                const int mid = lo + (hi - lo) / 2;
+                if (pred(along(specs, dims, a, mid).box)) hi = mid;
+                else lo = mid + 1;
+            }
+            return lo;
+        };
+        from[a] = first_where([&](const openvdb::CoordBBox& box) { return box.max()[a] >= b.own_lo[a]; });
+        to[a] = first_where([&](const openvdb::CoordBBox& box) { return !(box.min()[a] < b.own_hi[a]); }) - 1;
+    }
     std::vector<std::size_t> out;
-    for (int z : near[2])
-        for (int y : near[1])
-            for (int x : near[0]) {
+    for (int z = from[2]; z <= to[2]; ++z)
+        for (int y = from[1]; y <= to[1]; ++y)
+            for (int x = from[0]; x <= to[0]; ++x) {
                 const std::size_t j = lattice_index(dims, x, y, z);
                 if (j != i) out.push_back(j);
             }
