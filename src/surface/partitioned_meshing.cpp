@@ -271,15 +271,20 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
     MeshStats& st = result.stats;
     PartitionStats& ps = st.partition;
     std::vector<SeedPoint> inserted;
-    // The grid-edge crossings place the balanced cuts and weigh the blocks dealt to processes.
+    // The grid-edge crossings place the balanced cuts and weigh the blocks dealt to processes;
+    // they are not held while the blocks mesh.
     std::vector<octree::EdgePoint> crossings;
-    if (options.block_count > 0 || ranks.size() > 1) crossings = octree::edge_crossings(field).points;
+    if (options.block_count > 0) crossings = octree::edge_crossings(field).points;
     const BlockCuts cuts = options.block_count > 0 ? balanced_cuts(field, options.block_count, crossings)
                                                    : cubic_cuts(field, options.block_voxels);
     for (int growth = 0;; ++growth) {
         const std::vector<BlockSpec> specs = blocks_of(cuts, collar);
         const std::size_t n = specs.size();
-        if (ranks.size() > 1) ranks.deal(block_work(specs, crossings));
+        if (ranks.size() > 1) {
+            if (crossings.empty()) crossings = octree::edge_crossings(field).points;
+            ranks.deal(block_work(specs, crossings));
+        }
+        std::vector<octree::EdgePoint>().swap(crossings);
         Blocks blocks(n);
         // A block's refiner keeps its interrupter across the rounds: one per block, all sharing
         // the caller's through SharedInterrupter.
