@@ -23,6 +23,29 @@ RunResult run_mpi(int np, const std::string& args, const std::string& scratch)
                    std::to_string(np) + " --oversubscribe --bind-to none " + shell_quote(ISODEL_CLI) + " " + args,
                scratch);
 }
+
+/// `mpirun -np 2` with \p options and one thread per process writes what one process with two
+/// threads writes, and that mesh verifies (isovalue 0, eps 0.25).
+void check_two_processes_write_the_threads_mesh(const std::string& volume, const std::string& options,
+                                                const TempDir& tmp, const std::string& name)
+{
+    INFO(name << ":" << options);
+    const std::string threads = tmp / (name + "_threads.ply"), processes = tmp / (name + "_np2.ply");
+    const RunResult t = run_isodel("mesh " + shell_quote(volume) + options + " --threads 2 -o " + shell_quote(threads),
+                                   tmp.path());
+    INFO(t.err);
+    REQUIRE(t.status == 0);
+    const RunResult m =
+        run_mpi(2, "mesh " + shell_quote(volume) + options + " --threads 1 -o " + shell_quote(processes), tmp.path());
+    INFO(m.err);
+    REQUIRE(m.status == 0);
+    CHECK(read_text(processes) == read_text(threads));
+    const RunResult v = run_isodel("verify " + shell_quote(volume) + " --iso 0 --eps-voxels 0.25 --mesh " +
+                                       shell_quote(processes),
+                                   tmp.path());
+    INFO(v.out << v.err);
+    CHECK(v.status == 0);
+}
 #endif
 
 } // namespace
@@ -58,43 +81,12 @@ TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verif
         CHECK(s.at("partition").at("processes").get<int>() == np);
         CHECK(s.at("topology").at("components").get<int>() == 1);
     }
-    // --block-count 2 (two slabs of about equal work, one per process): 2 processes write the
-    // thread engine's mesh with the same option, and it verifies.
-    const std::string count_threads = tmp / "count_threads.ply", count_np2 = tmp / "count_np2.ply";
-    const std::string by_count = " --iso 0 --eps-voxels 0.25 --block-count 2 --quiet";
-    const RunResult ct = run_isodel("mesh " + shell_quote(torus) + by_count + " --threads 2 -o " + shell_quote(count_threads),
-                                    tmp.path());
-    INFO(ct.err);
-    REQUIRE(ct.status == 0);
-    const RunResult cm = run_mpi(2, "mesh " + shell_quote(torus) + by_count + " --threads 1 -o " + shell_quote(count_np2),
-                                 tmp.path());
-    INFO(cm.err);
-    REQUIRE(cm.status == 0);
-    CHECK(read_text(count_np2) == read_text(count_threads));
-    const RunResult cv = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.25 --mesh " +
-                                        shell_quote(count_np2),
-                                    tmp.path());
-    INFO(cv.out << cv.err);
-    CHECK(cv.status == 0);
-    // --release-blocks (one block alive per thread, rebuilt when points arrive): 2 processes
-    // write the thread engine's mesh with the same option, and it verifies.
-    const std::string released_threads = tmp / "released_threads.ply", released = tmp / "released.ply";
-    const RunResult rt = run_isodel("mesh " + shell_quote(torus) + common + " --threads 2 --release-blocks -o " +
-                                        shell_quote(released_threads),
-                                    tmp.path());
-    INFO(rt.err);
-    REQUIRE(rt.status == 0);
-    const RunResult r = run_mpi(2, "mesh " + shell_quote(torus) + common + " --threads 1 --release-blocks -o " +
-                                       shell_quote(released),
-                                tmp.path());
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    CHECK(read_text(released) == read_text(released_threads));
-    const RunResult rv = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.25 --mesh " +
-                                        shell_quote(released),
-                                    tmp.path());
-    INFO(rv.out << rv.err);
-    CHECK(rv.status == 0);
+    // --block-count 2 (two slabs of about equal work, one per process) and --release-blocks (one
+    // block alive per thread, rebuilt when points arrive): 2 processes write the thread engine's
+    // mesh with the same option, and it verifies.
+    check_two_processes_write_the_threads_mesh(torus, " --iso 0 --eps-voxels 0.25 --block-count 2 --quiet", tmp,
+                                               "count");
+    check_two_processes_write_the_threads_mesh(torus, common + " --release-blocks", tmp, "released");
 #endif
 }
 
