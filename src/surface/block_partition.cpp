@@ -39,6 +39,25 @@ const BlockSpec& along(const std::vector<BlockSpec>& specs, const std::array<int
     return specs[lattice_index(dims, p[0], p[1], p[2])];
 }
 
+/// The positions along axis \p a whose boxes meet [lo, hi) there, as [from, to] (empty when
+/// from > to): a contiguous run, since the boxes' ends grow along the lattice, found by two
+/// binary searches.
+std::array<int, 2> boxes_meeting(const std::vector<BlockSpec>& specs, const std::array<int, 3>& dims, int a, double lo,
+                                 double hi)
+{
+    const auto first_where = [&](auto&& pred) { // the first position where pred holds, or dims[a]
+        int l = 0, h = dims[a];
+        while (l < h) {
+            const int mid = l + (h - l) / 2;
+            if (pred(along(specs, dims, a, mid).box)) h = mid;
+            else l = mid + 1;
+        }
+        return l;
+    };
+    return {first_where([&](const openvdb::CoordBBox& box) { return box.max()[a] >= lo; }),
+            first_where([&](const openvdb::CoordBBox& box) { return !(box.min()[a] < hi); }) - 1};
+}
+
 /// Blocks per axis for \p count blocks on a domain of \p cells: the factoring whose cut faces
 /// have the least area, every block at least kMinBlockVoxels cells wide; the first in the
 /// enumeration order (fewest blocks along x, then y) on ties.
@@ -170,26 +189,13 @@ std::vector<std::size_t> neighbours(const std::vector<BlockSpec>& specs, std::si
 {
     const std::array<int, 3> dims = lattice_dims(specs);
     const BlockSpec& b = specs[i];
-    // Per axis the positions whose boxes meet b's own region (own_lo <= q < own_hi) there: a
-    // contiguous run, since the boxes' ends grow along the lattice (two binary searches).
-    int from[3], to[3];
-    for (int a = 0; a < 3; ++a) {
-        const auto first_where = [&](auto&& pred) { // the first position where pred holds, or dims[a]
-            int lo = 0, hi = dims[a];
-            while (lo < hi) {
-                const int mid = lo + (hi - lo) / 2;
-                if (pred(along(specs, dims, a, mid).box)) hi = mid;
-                else lo = mid + 1;
-            }
-            return lo;
-        };
-        from[a] = first_where([&](const openvdb::CoordBBox& box) { return box.max()[a] >= b.own_lo[a]; });
-        to[a] = first_where([&](const openvdb::CoordBBox& box) { return !(box.min()[a] < b.own_hi[a]); }) - 1;
-    }
+    // Per axis the positions whose boxes meet b's own region (own_lo <= q < own_hi) there.
+    std::array<std::array<int, 2>, 3> run;
+    for (int a = 0; a < 3; ++a) run[a] = boxes_meeting(specs, dims, a, b.own_lo[a], b.own_hi[a]);
     std::vector<std::size_t> out;
-    for (int z = from[2]; z <= to[2]; ++z)
-        for (int y = from[1]; y <= to[1]; ++y)
-            for (int x = from[0]; x <= to[0]; ++x) {
+    for (int z = run[2][0]; z <= run[2][1]; ++z)
+        for (int y = run[1][0]; y <= run[1][1]; ++y)
+            for (int x = run[0][0]; x <= run[0][1]; ++x) {
                 const std::size_t j = lattice_index(dims, x, y, z);
                 if (j != i) out.push_back(j);
             }
@@ -200,23 +206,13 @@ std::vector<double> block_work(const std::vector<BlockSpec>& specs, const std::v
 {
     std::vector<double> work(specs.size(), 1.0);
     const std::array<int, 3> dims = lattice_dims(specs);
-    // Per axis the boxes' extents, both nondecreasing along the lattice.
-    std::array<std::vector<int>, 3> lo, hi;
-    for (int a = 0; a < 3; ++a)
-        for (int x = 0; x < dims[a]; ++x) {
-            lo[a].push_back(along(specs, dims, a, x).box.min()[a]);
-            hi[a].push_back(along(specs, dims, a, x).box.max()[a]);
-        }
     for (const octree::EdgePoint& e : crossings) {
-        // The positions whose boxes hold e.lower along each axis: a contiguous run.
-        int from[3], to[3];
-        for (int a = 0; a < 3; ++a) {
-            from[a] = int(std::lower_bound(hi[a].begin(), hi[a].end(), e.lower[a]) - hi[a].begin());
-            to[a] = int(std::upper_bound(lo[a].begin(), lo[a].end(), e.lower[a]) - lo[a].begin()) - 1;
-        }
-        for (int z = from[2]; z <= to[2]; ++z)
-            for (int y = from[1]; y <= to[1]; ++y)
-                for (int x = from[0]; x <= to[0]; ++x) work[lattice_index(dims, x, y, z)] += 1;
+        // The boxes holding the sample e.lower: those meeting [q, q + 1) along each axis.
+        std::array<std::array<int, 2>, 3> run;
+        for (int a = 0; a < 3; ++a) run[a] = boxes_meeting(specs, dims, a, e.lower[a], e.lower[a] + 1.0);
+        for (int z = run[2][0]; z <= run[2][1]; ++z)
+            for (int y = run[1][0]; y <= run[1][1]; ++y)
+                for (int x = run[0][0]; x <= run[0][1]; ++x) work[lattice_index(dims, x, y, z)] += 1;
     }
     return work;
 }
