@@ -35,12 +35,31 @@
 #include <openvdb/openvdb.h>
 
 #include <optional>
+#include <string>
 
 namespace isodel::octree {
 
 using openvdb::Coord;
 using openvdb::CoordBBox;
 using openvdb::Vec3d;
+
+struct ValueScan; // value_scan.h
+
+/// What a SampleField takes from the whole volume, for a field whose grid holds only part of the
+/// samples (one process of a partitioned run reads only its blocks' boxes of the file,
+/// surface/partitioned_file.h): with it, the part reads every sample it holds exactly as the
+/// whole volume's field does.
+struct FieldSummary {
+    CoordBBox lattice;      ///< the whole volume's active bounding box
+    double vmin = 0, vmax = 0; ///< value_min(), value_max() of the whole volume's field
+    double v_star = 0;      ///< the tie rule's level for the whole volume
+};
+
+/// The summary from the joined scan of the whole volume (value_scan.h: its stored values, the
+/// background where an inactive sample reads it, and the face and cell saddles).
+/// \throw InvalidInput the level set is empty (the message names \p grid_name)
+FieldSummary summarize_scan(const ValueScan& scan, const CoordBBox& lattice, double isovalue,
+                            const std::string& grid_name);
 
 class SampleField {
 public:
@@ -54,6 +73,10 @@ public:
     /// (a saddle lies within its corners' range, so only within rounding of its end). Everything
     /// else (range, outside value) is what the constructor above gives.
     SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside, double v_star);
+
+    /// A field on \p grid, which holds the samples it will be asked for, with what the whole
+    /// volume decides given by \p whole (lattice, range, level); nothing is scanned.
+    SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside, const FieldSummary& whole);
 
     /// \p parent seen through the box \p clip (sample coordinates): the same samples, level v*
     /// and outside value inside it, "outside" beyond it, so its Sigma is \p parent's Sigma inside
@@ -150,6 +173,8 @@ public:
 private:
     /// Both public constructors: \p v_star given or the tie rule's.
     SampleField(openvdb::FloatGrid::ConstPtr grid, double isovalue, Inside inside, std::optional<double> v_star);
+    /// Outside magnitude, smallest voxel edge and slab shift, from the range and the transform.
+    void init_geometry();
 
     openvdb::FloatGrid::ConstPtr grid_;
     CoordBBox domain_;

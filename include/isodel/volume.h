@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace isodel {
 
@@ -42,6 +43,13 @@ struct ReadOptions {
     std::optional<RawLayout> raw;
     /// Refuse headers announcing more samples than this, before allocating anything.
     std::uint64_t max_voxels = std::uint64_t(1) << 31;
+    /// When set, only the samples in these index boxes (clipped to the file's lattice) are read,
+    /// each by its offset in the file: MRC/CCP4 and raw volumes. Volume::grid then holds those
+    /// samples alone, Volume::lattice is still the whole file's lattice, and the value range is
+    /// over the samples read (none for an empty list: the header alone). Other formats are read
+    /// whole (Volume::partial stays false). What a process of a partitioned run reads
+    /// (mesh_isosurface_file in mesh.h).
+    std::optional<std::vector<openvdb::CoordBBox>> regions;
 };
 
 /// A volume as read from a file.
@@ -56,6 +64,8 @@ struct Volume {
     /// the adaptive interpolant resampled exactly on the finest grid (include/isodel/adaptive.h).
     int adaptive_levels = 0;
     int adaptive_k = 0;
+    /// ReadOptions::regions was honoured: the grid holds only the samples of those boxes.
+    bool partial = false;
 };
 
 /// Reads \p path by extension (.vdb, .mrc/.map/.ccp4, .inr/.inr.gz, else raw with \p opt.raw).

@@ -208,3 +208,65 @@ void finish_volume(Volume& vol)
 }
 
 } // namespace isodel::io
+
+namespace isodel::io {
+
+Volume read_dense_regions(const std::string& path, const std::string& format, const DenseLayout& layout,
+                          const std::vector<openvdb::CoordBBox>& regions, openvdb::math::Transform::Ptr transform)
+{
+    const auto& fd = layout.file_dims;
+    openvdb::Coord top;
+    for (int f = 0; f < 3; ++f) top[layout.axis_of[f]] = fd[f] - 1;
+    Volume vol;
+    vol.path = path;
+    vol.format = format;
+    vol.partial = true;
+    vol.lattice = openvdb::CoordBBox(openvdb::Coord(0), top);
+    vol.grid = openvdb::FloatGrid::create(0.0f);
+    vol.grid->setName("density");
+    vol.grid->setTransform(transform);
+    vol.default_inside = Inside::Above;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) io_failure(path, "cannot open for reading");
+    const int bytes = sample_bytes(layout.type);
+    std::vector<unsigned char> raw;
+    std::vector<float> run;
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    auto acc = vol.grid->getAccessor();
+    for (openvdb::CoordBBox box : regions) {
+        box.intersect(vol.lattice);
+        if (box.empty()) continue;
+        // The box's extent along each file axis.
+        std::array<int, 3> from{}, to{};
+        for (int f = 0; f < 3; ++f) from[f] = box.min()[layout.axis_of[f]], to[f] = box.max()[layout.axis_of[f]];
+        const std::size_t length = std::size_t(to[0] - from[0] + 1);
+        raw.resize(length * std::size_t(bytes));
+        run.resize(length);
+        openvdb::Coord ijk;
+        for (int s = from[2]; s <= to[2]; ++s)
+            for (int r = from[1]; r <= to[1]; ++r) {
+                const std::uint64_t first = (std::uint64_t(s) * std::uint64_t(fd[1]) + std::uint64_t(r)) *
+                                                std::uint64_t(fd[0]) + std::uint64_t(from[0]);
+                in.seekg(std::streamoff(layout.data_offset + first * std::uint64_t(bytes)));
+                if (!in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size())))
+                    io_failure(path, "truncated: read failed in section " + std::to_string(s));
+                convert_samples(raw.data(), length, layout.type, layout.swap, run.data());
+                ijk[layout.axis_of[1]] = r;
+                ijk[layout.axis_of[2]] = s;
+                for (std::size_t c = 0; c < length; ++c) {
+                    ijk[layout.axis_of[0]] = from[0] + int(c);
+                    const float v = run[c];
+                    if (!std::isfinite(v))
+                        invalid(path, std::string(std::isnan(v) ? "NaN" : "Inf") + " sample at index (i,j,k) = " +
+                                          coord_text(ijk) + "; non-finite samples are not accepted");
+                    lo = std::min(lo, v);
+                    hi = std::max(hi, v);
+                    acc.setValue(ijk, v);
+                }
+            }
+    }
+    if (lo <= hi) vol.value_min = lo, vol.value_max = hi;
+    return vol;
+}
+
+} // namespace isodel::io

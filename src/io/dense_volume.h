@@ -52,6 +52,22 @@ struct DenseBlock {
 Volume make_dense_volume(const std::string& path, const std::string& format, const DenseBlock& block,
                          openvdb::math::Transform::Ptr transform);
 
+/// Where a dense file's samples are: \p file_dims samples in file order (the fastest axis first,
+/// file axis f along lattice axis axis_of[f]) of \p type from byte \p data_offset on.
+struct DenseLayout {
+    std::array<int, 3> file_dims{0, 0, 0};
+    std::array<int, 3> axis_of{0, 1, 2};
+    SampleType type = SampleType::Float32;
+    bool swap = false;
+    std::uint64_t data_offset = 0;
+};
+
+/// ReadOptions::regions for a dense file: reads the samples of each box (clipped to the lattice)
+/// run by run along the file's fastest axis, each run at its offset; refuses NaN/Inf like
+/// make_dense_volume. The Volume's lattice is the whole file's.
+Volume read_dense_regions(const std::string& path, const std::string& format, const DenseLayout& layout,
+                          const std::vector<openvdb::CoordBBox>& regions, openvdb::math::Transform::Ptr transform);
+
 /// Fills lattice, value range (and checks finiteness) of a Volume whose grid is set.
 void finish_volume(Volume& vol);
 

@@ -165,6 +165,15 @@ Volume read_mrc(const std::string& path, const ReadOptions& opt)
     else
         xform = openvdb::math::Transform::createLinearTransform(mat);
 
+    if (opt.regions) {
+        DenseLayout layout;
+        layout.file_dims = {int(n[0]), int(n[1]), int(n[2])};
+        for (int f = 0; f < 3; ++f) layout.axis_of[f] = map[f] - 1;
+        layout.type = type;
+        layout.swap = h.swap;
+        layout.data_offset = kHeaderBytes + std::uint64_t(nsymbt);
+        return read_dense_regions(path, "mrc", layout, *opt.regions, xform);
+    }
     DenseBlock block;
     block.file_dims = {int(n[0]), int(n[1]), int(n[2])};
     for (int f = 0; f < 3; ++f) block.axis_of[f] = map[f] - 1;

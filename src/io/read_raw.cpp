@@ -34,6 +34,14 @@ Volume read_raw(const std::string& path, const ReadOptions& opt)
                           std::to_string(dims[2]) + " " + L.type + " disagree with the file size: expected " +
                           std::to_string(expected) + " bytes, the file has " + std::to_string(fsize));
 
+    auto xform = openvdb::math::Transform::createLinearTransform(L.spacing);
+    if (opt.regions) {
+        DenseLayout layout;
+        layout.file_dims = {L.dims[0], L.dims[1], L.dims[2]};
+        layout.type = st;
+        layout.swap = !host_is_little_endian(); // raw volumes are little-endian (RawLayout)
+        return read_dense_regions(path, "raw", layout, *opt.regions, xform);
+    }
     std::ifstream in(path, std::ios::binary);
     std::vector<unsigned char> raw(expected);
     if (!in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(expected)))
@@ -44,7 +52,6 @@ Volume read_raw(const std::string& path, const ReadOptions& opt)
     // Raw volumes are little-endian by definition (see RawLayout).
     convert_samples(raw.data(), count, st, !host_is_little_endian(), block.values.data());
     raw = {};
-    auto xform = openvdb::math::Transform::createLinearTransform(L.spacing);
     return make_dense_volume(path, "raw", block, xform);
 }
 

@@ -12,9 +12,8 @@ namespace isodel::mesher {
 namespace {
 
 /// The domain's cells per axis (lower corners min .. max - 1), at least one.
-std::array<int, 3> domain_cells(const octree::SampleField& field)
+std::array<int, 3> domain_cells(const openvdb::CoordBBox& d)
 {
-    const openvdb::CoordBBox& d = field.domain();
     std::array<int, 3> n{};
     for (int a = 0; a < 3; ++a) n[a] = std::max(1, d.max()[a] - d.min()[a]);
     return n;
@@ -117,7 +116,7 @@ std::vector<int> balanced_slabs(const std::vector<std::int64_t>& work, int n)
 BlockCuts cubic_cuts(const octree::SampleField& field, int block_voxels)
 {
     if (block_voxels < 1) throw InvalidInput("block size must be at least one voxel");
-    const std::array<int, 3> cells = domain_cells(field);
+    const std::array<int, 3> cells = domain_cells(field.domain());
     std::array<int, 3> n{};
     for (int a = 0; a < 3; ++a) n[a] = (cells[a] + block_voxels - 1) / block_voxels;
     const double count = double(n[0]) * n[1] * n[2];
@@ -133,12 +132,29 @@ BlockCuts cubic_cuts(const octree::SampleField& field, int block_voxels)
     return c;
 }
 
+CrossingSlices crossing_slices(const openvdb::CoordBBox& domain, const std::vector<octree::EdgePoint>& crossings)
+{
+    const std::array<int, 3> cells = domain_cells(domain);
+    const openvdb::Coord o = domain.min();
+    CrossingSlices out;
+    for (int a = 0; a < 3; ++a) {
+        out[a].assign(std::size_t(cells[a]), 0);
+        for (const octree::EdgePoint& e : crossings) ++out[a][std::size_t(std::clamp(e.lower[a] - o[a], 0, cells[a] - 1))];
+    }
+    return out;
+}
+
 BlockCuts balanced_cuts(const octree::SampleField& field, int count, const std::vector<octree::EdgePoint>& crossings)
+{
+    return balanced_cuts(field.domain(), count, crossing_slices(field.domain(), crossings));
+}
+
+BlockCuts balanced_cuts(const openvdb::CoordBBox& domain, int count, const CrossingSlices& slices)
 {
     if (count < 1 || count > kMaxBlocks)
         throw InvalidInput("block count must be in [1, " + std::to_string(int(kMaxBlocks)) + "] (got " +
                            std::to_string(count) + ")");
-    const std::array<int, 3> cells = domain_cells(field);
+    const std::array<int, 3> cells = domain_cells(domain);
     const std::array<int, 3> n = factor_count(count, cells);
     if (n[0] == 0) {
         std::ostringstream os;
@@ -146,14 +162,11 @@ BlockCuts balanced_cuts(const octree::SampleField& field, int count, const std::
            << cells[2] << " cells into blocks at least " << kMinBlockVoxels << " cells wide: choose fewer blocks";
         throw InvalidInput(os.str());
     }
-    const openvdb::Coord o = field.domain().min();
     BlockCuts c;
     for (int a = 0; a < 3; ++a) {
-        std::vector<std::int64_t> work(std::size_t(cells[a]), 0);
-        if (n[a] > 1)
-            for (const octree::EdgePoint& e : crossings)
-                ++work[std::size_t(std::clamp(e.lower[a] - o[a], 0, cells[a] - 1))];
-        for (int x : balanced_slabs(work, n[a])) c.at[a].push_back(o[a] + x);
+        if (slices[a].size() != std::size_t(cells[a]))
+            throw InvalidInput("balanced_cuts: the crossing counts do not match the domain's cells");
+        for (int x : balanced_slabs(slices[a], n[a])) c.at[a].push_back(domain.min()[a] + x);
     }
     return c;
 }

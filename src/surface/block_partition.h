@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace isodel::mesher {
@@ -41,6 +42,14 @@ BlockCuts cubic_cuts(const octree::SampleField& field, int block_voxels);
 /// at least kMinBlockVoxels cells wide along every axis.
 /// \throw InvalidInput count < 1, or no factoring of count whose blocks are that wide
 BlockCuts balanced_cuts(const octree::SampleField& field, int count, const std::vector<octree::EdgePoint>& crossings);
+
+/// Per axis, the crossings whose lower sample lies in each slice of cells of \p domain (clamped to
+/// its cells): what balanced_cuts weighs. Counts of parts of the crossings add up to the whole's.
+using CrossingSlices = std::array<std::vector<std::int64_t>, 3>;
+CrossingSlices crossing_slices(const openvdb::CoordBBox& domain, const std::vector<octree::EdgePoint>& crossings);
+
+/// balanced_cuts from the counts per slice (crossing_slices) of a field with \p domain.
+BlockCuts balanced_cuts(const openvdb::CoordBBox& domain, int count, const CrossingSlices& slices);
 
 /// The blocks of \p cuts, in lexicographic (z, y, x) order, each core's samples grown by \p collar.
 std::vector<BlockSpec> blocks_of(const BlockCuts& cuts, const std::array<int, 3>& collar);

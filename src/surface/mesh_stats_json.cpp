@@ -49,6 +49,8 @@ std::string to_json(const MeshStats& s)
                           {"block_rebuilds", p.block_rebuilds},
                           {"processes", p.processes},
                           {"max_process_peak_memory_bytes", p.max_process_peak_memory_bytes},
+                          {"max_process_samples_read", p.max_process_samples_read},
+                          {"file_samples", p.file_samples},
                           {"block_points", p.block_points},
                           {"seam_points", p.seam_points}};
     }

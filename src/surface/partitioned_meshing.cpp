@@ -255,36 +255,60 @@ bool assemble_everywhere(Blocks& blocks, const BlockRanks& ranks, SharedInterrup
 
 } // namespace
 
+PartitionPlan plan_partition(const octree::SampleField& field, const MeshOptions& options, bool deal)
+{
+    // The grid-edge crossings place the balanced cuts and weigh the blocks dealt to processes;
+    // they are not held while the blocks mesh.
+    PartitionPlan plan;
+    std::vector<octree::EdgePoint> crossings;
+    if (options.block_count > 0 || deal) crossings = octree::edge_crossings(field).points;
+    plan.cuts = options.block_count > 0 ? balanced_cuts(field, options.block_count, crossings)
+                                        : cubic_cuts(field, options.block_voxels);
+    if (deal) {
+        std::array<int, 3> collar = collar_voxels(field);
+        for (int growth = 0; growth <= kMaxCollarGrowths; ++growth) {
+            plan.work.push_back(block_work(blocks_of(plan.cuts, collar), crossings));
+            for (int& c : collar) c += 2;
+        }
+    }
+    return plan;
+}
+
 MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter)
+{
+    check_mesh_options(options);
+    const ThreadLimit threads(options.threads);
+    const PartitionPlan plan = plan_partition(field, options, BlockRanks(options.transport).size() > 1);
+    const BlockFieldSource whole = [&](const std::vector<openvdb::CoordBBox>&) -> const octree::SampleField& {
+        return field;
+    };
+    return mesh_partitioned(field, plan, whole, options, interrupter);
+}
+
+MeshResult mesh_partitioned(const octree::SampleField& frame, const PartitionPlan& plan, const BlockFieldSource& source,
+                            const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
     check_mesh_options(options);
     const ThreadLimit threads(options.threads);
     BlockRanks ranks(options.transport);
-    const std::array<int, 3> r = octree::layer_radius(field);
+    const std::array<int, 3> r = octree::layer_radius(frame);
     // The block's points differ from the global ones only within r + 2 voxels of its box's inner
     // faces (docs/partitioned.md, Lemma 1): its trusted box lies inside that margin.
     const int margin = *std::max_element(r.begin(), r.end()) + 2;
-    std::array<int, 3> collar = collar_voxels(field);
+    std::array<int, 3> collar = collar_voxels(frame);
     SharedInterrupter shared(interrupter);
     MeshResult result;
     MeshStats& st = result.stats;
     PartitionStats& ps = st.partition;
     std::vector<SeedPoint> inserted;
-    // The grid-edge crossings place the balanced cuts and weigh the blocks dealt to processes;
-    // they are not held while the blocks mesh.
-    std::vector<octree::EdgePoint> crossings;
-    if (options.block_count > 0) crossings = octree::edge_crossings(field).points;
-    const BlockCuts cuts = options.block_count > 0 ? balanced_cuts(field, options.block_count, crossings)
-                                                   : cubic_cuts(field, options.block_voxels);
     for (int growth = 0;; ++growth) {
-        const std::vector<BlockSpec> specs = blocks_of(cuts, collar);
+        const std::vector<BlockSpec> specs = blocks_of(plan.cuts, collar);
         const std::size_t n = specs.size();
-        if (ranks.size() > 1) {
-            if (crossings.empty()) crossings = octree::edge_crossings(field).points;
-            ranks.deal(block_work(specs, crossings));
-        }
-        std::vector<octree::EdgePoint>().swap(crossings);
+        if (ranks.size() > 1) ranks.deal(plan.work.at(std::size_t(growth)));
+        std::vector<openvdb::CoordBBox> boxes;
+        for (std::size_t i : ranks.mine(n)) boxes.push_back(specs[i].box);
+        const octree::SampleField& field = source(boxes);
         Blocks blocks(n);
         // A block's refiner keeps its interrupter across the rounds: one per block, all sharing
         // the caller's through SharedInterrupter.
@@ -337,7 +361,7 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
     if (options.tets != TetRegion::None) {
         // DELVOLMESH on one triangulation of the blocks' points; its loop checks everything again.
         FieldRun merge;
-        merge.field = &field;
+        merge.field = &source({}); // the whole field: the tets need every sample (mesh_partitioned's contract)
         merge.seeds = std::move(inserted);
         MeshResult m = mesh_field(merge, options, interrupter);
         const std::size_t seam = m.stats.partition.seam_points;
@@ -347,8 +371,8 @@ MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions&
         m.stats.seconds["total"] += t_blocks;
         return m;
     }
-    st.effective_isovalue = field.effective_isovalue();
-    st.eps_world = options.eps > 0 ? options.eps : options.eps_voxels * field.min_voxel_edge();
+    st.effective_isovalue = frame.effective_isovalue();
+    st.eps_world = options.eps > 0 ? options.eps : options.eps_voxels * frame.min_voxel_edge();
     st.vertices = result.surface.vertices.size();
     st.triangles = result.surface.triangles.size();
     st.components = surface_topology(result.surface);

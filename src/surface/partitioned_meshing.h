@@ -28,6 +28,7 @@
 #include <openvdb/openvdb.h>
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace isodel::mesher {
@@ -55,9 +56,33 @@ inline std::vector<BlockSpec> partition_domain(const octree::SampleField& field,
 /// empty, unless every edge lies in exactly two triangles of opposite orientation.
 bool assemble_surface(const std::vector<BlockSurface>& parts, SurfaceMesh& mesh);
 
-/// Partitioned DELSURFMESH as described above (TBB tasks, one per block).
+/// What partitioned meshing decides from the whole volume before a block meshes: where the
+/// blocks are cut and, when several processes share them, each block's work for the deal
+/// (BlockRanks::deal), one list per collar width tried (kMaxCollarGrowths + 1 of them).
+struct PartitionPlan {
+    BlockCuts cuts;
+    std::vector<std::vector<double>> work; ///< empty when the blocks are not dealt
+};
+
+/// The plan from \p field itself (its grid-edge crossings for the balanced cuts and the work).
+PartitionPlan plan_partition(const octree::SampleField& field, const MeshOptions& options, bool deal);
+
+/// The field the blocks of this process read: called with their boxes before they are built
+/// (again after the collar grows); it must read every sample of those boxes as the whole
+/// volume's field does and stay alive until the next call. Called with no box, it must return
+/// the whole field (tetrahedra merge every block's points on one triangulation).
+using BlockFieldSource = std::function<const octree::SampleField&(const std::vector<openvdb::CoordBBox>& boxes)>;
+
+/// Partitioned DELSURFMESH as described above (TBB tasks, one per block), on \p field.
 /// Output depends on the partition (options.block_voxels or block_count), never on the thread or
 /// process count.
 MeshResult mesh_partitioned(const octree::SampleField& field, const MeshOptions& options, Interrupter* interrupter);
+
+/// The same with the plan made beforehand and the samples from \p source; \p frame gives
+/// what does not depend on the samples (transform, domain, level), its grid may be empty. The
+/// mesh is mesh_partitioned(field, ...)'s when the plan is plan_partition(field, ...)'s and the
+/// source reads field's samples.
+MeshResult mesh_partitioned(const octree::SampleField& frame, const PartitionPlan& plan, const BlockFieldSource& source,
+                            const MeshOptions& options, Interrupter* interrupter);
 
 } // namespace isodel::mesher

@@ -90,6 +90,49 @@ TEST_CASE("mpirun: 1, 2 and 4 processes mesh what the threads mesh, and it verif
 #endif
 }
 
+TEST_CASE("mpirun: each process reads only part of an MRC file and they write the threads' mesh", "[cli][partition][mpi]")
+{
+#ifndef ISODEL_MPIRUN
+    ISODEL_SKIP("isodel was built without MPI, or mpirun is missing (Debian: libopenmpi-dev openmpi-bin)");
+#else
+    TempDir tmp;
+    const std::string blobs = std::string(ISODEL_TEST_DATA) + "/two_blobs.mrc";
+    const std::string common = " --iso 0.5 --eps-voxels 0.5 --quiet";
+    for (const std::string& part : {std::string(" --block-count 2"), std::string(" --blocks 8")}) {
+        INFO(part);
+        const std::string threads = tmp / "threads.ply";
+        const RunResult t =
+            run_isodel("mesh " + shell_quote(blobs) + common + part + " --threads 2 -o " + shell_quote(threads), tmp.path());
+        INFO(t.err);
+        REQUIRE(t.status == 0);
+        for (int np : {2, 3}) {
+            INFO(np << " processes");
+            const std::string out = tmp / "np.ply", stats = tmp / "np.json";
+            const RunResult m = run_mpi(np, "mesh " + shell_quote(blobs) + common + part + " --threads 1 -o " +
+                                                shell_quote(out) + " --stats " + shell_quote(stats),
+                                        tmp.path());
+            INFO(m.err);
+            REQUIRE(m.status == 0);
+            CHECK(read_text(out) == read_text(threads));
+            const auto p = isodel::testing::read_json_file(stats).at("partition");
+            CHECK(p.at("processes").get<int>() == np);
+            // No process read the whole file: a slab of it, then its blocks' boxes.
+            CHECK(p.at("max_process_samples_read").get<double>() > 0);
+            CHECK(p.at("max_process_samples_read").get<double>() < p.at("file_samples").get<double>());
+        }
+    }
+    // An isovalue outside the samples: one line naming the file (once), exit 2, no file.
+    const std::string out = tmp / "none.ply";
+    const RunResult r =
+        run_mpi(2, "mesh " + shell_quote(blobs) + " --iso 1e6 --block-count 2 --quiet -o " + shell_quote(out), tmp.path());
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find(blobs + ": isovalue") != std::string::npos);
+    CHECK(r.err.find(blobs + ": " + blobs) == std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+#endif
+}
+
 TEST_CASE("mpirun: refusals and a failing process end the run with one message and no file", "[cli][partition][mpi]")
 {
 #ifndef ISODEL_MPIRUN

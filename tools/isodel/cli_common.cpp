@@ -115,7 +115,9 @@ void add_input_options(CLI::App& cmd, InputOptions& in)
     cmd.add_option("--raw-spacing", in.raw_spacing, "Raw volume: voxel size (default 1)");
 }
 
-Volume read_input(const InputOptions& in)
+Volume read_input(const InputOptions& in) { return read_volume(in.path, read_options(in)); }
+
+ReadOptions read_options(const InputOptions& in)
 {
     ReadOptions opt;
     opt.grid_name = in.grid;
@@ -138,7 +140,7 @@ Volume read_input(const InputOptions& in)
     } else if (!in.raw_type.empty()) {
         throw InvalidInput("--raw-type needs --raw-dims");
     }
-    return read_volume(in.path, opt);
+    return opt;
 }
 
 } // namespace isodel::cli

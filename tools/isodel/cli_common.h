@@ -48,6 +48,8 @@ void add_input_options(CLI::App& cmd, InputOptions& in);
 
 /// Reads the volume \p in describes (throws InvalidInput/IoError with the path in the message).
 Volume read_input(const InputOptions& in);
+// How read_input reads (grid name, raw layout, ISODEL_MAX_VOXELS).
+ReadOptions read_options(const InputOptions& in);
 
 // Subcommand registration (one per cmd_*.cpp). Each returns after adding its subcommand; the
 // callback it installs returns its exit code through the given int.

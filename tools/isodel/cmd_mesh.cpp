@@ -196,9 +196,19 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         progress.start("read");
         Volume vol;
         std::exception_ptr read_failure;
+        // Under mpirun a file that can be read in part (MRC, raw) is: each process reads its
+        // slab and its blocks' boxes (mesh_isosurface_file), here only the header. Tetrahedra
+        // and --certify need every sample.
+        const bool read_in_part = mpi.several() && mo.tets == TetRegion::None && !mo.certify;
         try {
-            vol = read_input(o->in);
-            check_isovalue(vol, o->iso);
+            if (read_in_part) {
+                ReadOptions header = read_options(o->in);
+                header.regions = std::vector<openvdb::CoordBBox>{};
+                vol = read_volume(o->in.path, header);
+            } else {
+                vol = read_input(o->in);
+            }
+            if (!vol.partial) check_isovalue(vol, o->iso); // else mesh_isosurface_file checks it
         } catch (...) {
             read_failure = std::current_exception();
         }
@@ -214,13 +224,16 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                                "already (isodel decimate); mesh it without --adaptive, or mesh the original");
         MeshResult res;
         try {
-            res = vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
-                                          : mesh_isosurface(*vol.grid, mo, &progress);
+            res = vol.partial                ? mesh_isosurface_file(o->in.path, read_options(o->in), mo, &progress)
+                  : vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
+                                            : mesh_isosurface(*vol.grid, mo, &progress);
         }
         catch (const GuaranteeViolated& e) {
             throw GuaranteeViolated(o->in.path + ": " + e.what()); // name the file (exit status 1)
         } catch (const InvalidInput& e) {
-            throw InvalidInput(o->in.path + ": " + e.what()); // what this volume cannot take (exit status 2)
+            // What this volume cannot take (exit status 2); a reader's message names the file already.
+            const std::string what = e.what();
+            throw InvalidInput(what.rfind(o->in.path + ": ", 0) == 0 ? what : o->in.path + ": " + what);
         }
 
         if (mpi.rank() != 0) return; // the first process holds the mesh and writes it
