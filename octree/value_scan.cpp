@@ -92,16 +92,34 @@ void scan_critical_values(const openvdb::FloatGrid& grid, const CoordBBox& latti
 
 std::uint64_t active_voxels_in(const openvdb::FloatGrid& grid, const CoordBBox& owned)
 {
+    // Value masks and tiles only: a delay-loaded leaf's values stay on disk.
     std::uint64_t n = 0;
-    for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
-        if (it.isVoxelValue()) {
-            if (owned.isInside(it.getCoord())) ++n;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+        const CoordBBox nb = leaf->getNodeBoundingBox();
+        if (!owned.hasOverlap(nb)) continue;
+        if (owned.isInside(nb)) {
+            n += leaf->onVoxelCount();
             continue;
         }
-        CoordBBox b = it.getBoundingBox();
-        b.intersect(owned);
-        if (!b.empty()) n += std::uint64_t(b.volume());
+        for (auto on = leaf->getValueMask().beginOn(); on; ++on)
+            if (owned.isInside(leaf->offsetToGlobalCoord(on.pos()))) ++n;
     }
+    for_each_stored_tile(grid.tree(), [&](const CoordBBox& b, float, bool active) {
+        if (!active) return;
+        CoordBBox part = b;
+        part.intersect(owned);
+        if (!part.empty()) n += std::uint64_t(part.volume());
+    });
+    return n;
+}
+
+/// Samples held in memory by \p grid: its leaves whose values are loaded (a delay-loaded .vdb
+/// loads a leaf when first read), 512 each.
+std::uint64_t samples_in_memory(const openvdb::FloatGrid& grid)
+{
+    std::uint64_t n = 0;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+        if (!leaf->buffer().isOutOfCore()) n += Tree::LeafNodeType::SIZE;
     return n;
 }
 

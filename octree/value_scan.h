@@ -63,7 +63,12 @@ void scan_stored_values(const openvdb::FloatGrid& grid, const openvdb::CoordBBox
 void scan_critical_values(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& lattice,
                           bool ring_reads_background, const openvdb::CoordBBox& owned, ValueScan& scan);
 
-/// The active voxels in \p owned (active tiles counted voxel by voxel, never expanded).
+/// The active voxels in \p owned (active tiles counted voxel by voxel, never expanded), from the
+/// value masks alone.
 std::uint64_t active_voxels_in(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& owned);
+
+/// The samples \p grid holds in memory: 512 per leaf whose values are loaded (OpenVDB's delayed
+/// loading reads a .vdb leaf's values when they are first read).
+std::uint64_t samples_in_memory(const openvdb::FloatGrid& grid);
 
 } // namespace isodel::octree

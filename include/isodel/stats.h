@@ -31,8 +31,9 @@ struct PartitionStats {
     std::size_t seam_points = 0;          ///< with tetrahedra: N points the merged triangulation added
     int processes = 1;                    ///< processes the blocks ran on (MeshOptions::transport)
     std::size_t max_process_peak_memory_bytes = 0; ///< the largest peak memory of one process
-    /// mesh_isosurface_file: the most samples one process read from the file at once (its slab
-    /// of the first pass, or its blocks' boxes), and the samples of the file's lattice.
+    /// mesh_isosurface_file: the most samples one process held from the file at once (its slab
+    /// of the first pass, or its blocks' boxes), and what a whole read holds: both in samples
+    /// held in memory, 512 per 8^3 leaf of values.
     std::uint64_t max_process_samples_read = 0, file_samples = 0;
 };
 

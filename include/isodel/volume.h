@@ -43,12 +43,15 @@ struct ReadOptions {
     std::optional<RawLayout> raw;
     /// Refuse headers announcing more samples than this, before allocating anything.
     std::uint64_t max_voxels = std::uint64_t(1) << 31;
-    /// When set, only the samples in these index boxes (clipped to the file's lattice) are read,
-    /// each by its offset in the file: MRC/CCP4 and raw volumes. Volume::grid then holds those
-    /// samples alone, Volume::lattice is still the whole file's lattice, and the value range is
-    /// over the samples read (none for an empty list: the header alone). Other formats are read
-    /// whole (Volume::partial stays false). What a process of a partitioned run reads
-    /// (mesh_isosurface_file in mesh.h).
+    /// When set, only the samples in these index boxes (clipped to the file's lattice) are read:
+    /// MRC/CCP4 and raw volumes by offset (Volume::grid then holds those samples alone), float
+    /// .vdb grids by OpenVDB's delayed loading (the grid's topology is read, and a leaf's values
+    /// when they are first read: those of the leaves meeting the boxes, and any leaf the caller
+    /// reads later). Volume::lattice is still the whole file's, and the value range is over the
+    /// samples read (for a .vdb also its tiles; value_min > value_max when nothing was read, as for an
+    /// empty list: the header alone).
+    /// Other formats (.inr, double grids) are read whole (Volume::partial stays false). What a
+    /// process of a partitioned run reads (mesh_isosurface_file in mesh.h).
     std::optional<std::vector<openvdb::CoordBBox>> regions;
 };
 
@@ -64,8 +67,11 @@ struct Volume {
     /// the adaptive interpolant resampled exactly on the finest grid (include/isodel/adaptive.h).
     int adaptive_levels = 0;
     int adaptive_k = 0;
-    /// ReadOptions::regions was honoured: the grid holds only the samples of those boxes.
+    /// ReadOptions::regions was honoured: the grid holds (or loads) only the samples of those boxes.
     bool partial = false;
+    /// Samples read from the file: the active voxels of a whole read, a region read's samples,
+    /// for a .vdb the voxels of the leaves loaded.
+    std::uint64_t samples_read = 0;
 };
 
 /// Reads \p path by extension (.vdb, .mrc/.map/.ccp4, .inr/.inr.gz, else raw with \p opt.raw).

@@ -160,11 +160,9 @@ Volume make_dense_volume(const std::string& path, const std::string& format, con
     return vol;
 }
 
-void finish_volume(Volume& vol)
+void check_transform_and_background(const Volume& vol)
 {
     const auto& tree = vol.grid->tree();
-    if (tree.activeVoxelCount() == 0) invalid(vol.path, "empty grid '" + vol.grid->getName() + "' (no active voxels)");
-    vol.lattice = vol.grid->evalActiveVoxelBoundingBox();
     // A .vdb's transform is the file's: the dense readers check their voxel sizes, OpenVDB's
     // map readers check nothing, and a zero, NaN or infinite voxel or origin leaves no world
     // coordinates for the mesh.
@@ -179,6 +177,16 @@ void finish_volume(Volume& vol)
         }
     const float bg = tree.background();
     if (!std::isfinite(bg)) invalid(vol.path, "non-finite background value in grid '" + vol.grid->getName() + "'");
+}
+
+void finish_volume(Volume& vol)
+{
+    const auto& tree = vol.grid->tree();
+    if (tree.activeVoxelCount() == 0) invalid(vol.path, "empty grid '" + vol.grid->getName() + "' (no active voxels)");
+    vol.lattice = vol.grid->evalActiveVoxelBoundingBox();
+    vol.samples_read = tree.activeVoxelCount();
+    check_transform_and_background(vol);
+    const float bg = tree.background();
     float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
     for (auto it = vol.grid->cbeginValueOn(); it; ++it) {
         const float v = *it;
@@ -265,7 +273,8 @@ Volume read_dense_regions(const std::string& path, const std::string& format, co
                 }
             }
     }
-    if (lo <= hi) vol.value_min = lo, vol.value_max = hi;
+    vol.value_min = lo, vol.value_max = hi; // min > max: nothing read
+    vol.samples_read = vol.grid->activeVoxelCount();
     return vol;
 }
 

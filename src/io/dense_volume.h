@@ -68,6 +68,10 @@ struct DenseLayout {
 Volume read_dense_regions(const std::string& path, const std::string& format, const DenseLayout& layout,
                           const std::vector<openvdb::CoordBBox>& regions, openvdb::math::Transform::Ptr transform);
 
+/// Refuses a transform without a finite, positive voxel size and a finite origin, and a
+/// non-finite background (every reader's grid).
+void check_transform_and_background(const Volume& vol);
+
 /// Fills lattice, value range (and checks finiteness) of a Volume whose grid is set.
 void finish_volume(Volume& vol);
 

@@ -3,12 +3,15 @@
 #include "dense_volume.h"
 #include "readers.h"
 
+#include "octree/stored_tiles.h"
 #include "octree/vdb_file_layout.h"
 
 #include <isodel/adaptive.h>
 #include <isodel/errors.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace isodel::io {
 namespace {
@@ -43,6 +46,41 @@ openvdb::FloatGrid::Ptr to_float_grid(const openvdb::GridBase::Ptr& base)
     return f;
 }
 
+/// ReadOptions::regions on a delay-loaded grid: the lattice from the topology, the value range
+/// (finish_volume's) over the tiles and the leaves that meet a region, which are all that is
+/// loaded; their values are checked to be finite.
+void finish_partial_vdb(Volume& vol, const std::vector<openvdb::CoordBBox>& regions)
+{
+    check_transform_and_background(vol);
+    const auto& tree = vol.grid->tree();
+    if (tree.activeVoxelCount() == 0) invalid(vol.path, "empty grid '" + vol.grid->getName() + "' (no active voxels)");
+    vol.partial = true;
+    vol.lattice = vol.grid->evalActiveVoxelBoundingBox();
+    const bool incomplete = tree.activeVoxelCount() < vol.lattice.volume();
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    const auto consider = [&](float v, const openvdb::Coord& at) {
+        if (!std::isfinite(v))
+            invalid(vol.path, std::string(std::isnan(v) ? "NaN" : "Inf") + " value at index (i,j,k) = (" +
+                                  std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) +
+                                  "); non-finite samples are not accepted");
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    };
+    octree::for_each_stored_tile(tree, [&](const openvdb::CoordBBox& b, float v, bool active) {
+        if (active || (incomplete && vol.lattice.hasOverlap(b))) consider(v, b.min());
+    });
+    if (incomplete) consider(tree.background(), vol.lattice.min());
+    for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+        const openvdb::CoordBBox nb = leaf->getNodeBoundingBox();
+        if (std::none_of(regions.begin(), regions.end(), [&](const openvdb::CoordBBox& r) { return r.hasOverlap(nb); }))
+            continue;
+        vol.samples_read += openvdb::FloatTree::LeafNodeType::SIZE;
+        for (auto v = leaf->cbeginValueAll(); v; ++v)
+            if (v.isValueOn() || (incomplete && vol.lattice.isInside(v.getCoord()))) consider(*v, v.getCoord());
+    }
+    vol.value_min = lo, vol.value_max = hi; // min > max: nothing read
+}
+
 } // namespace
 
 Volume read_vdb(const std::string& path, const ReadOptions& opt)
@@ -71,7 +109,11 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
     }
     openvdb::io::File file(path);
     try {
-        file.open(/*delayLoad=*/false);
+        // ReadOptions::regions: OpenVDB's delayed loading maps the file and loads a leaf's values
+        // when they are first read, so only the leaves the caller reads are loaded. No private
+        // copy of the file is made (the caller reads it within one run).
+        file.setCopyMaxBytes(0);
+        file.open(/*delayLoad=*/opt.regions.has_value());
     } catch (const std::exception& e) { // OpenVDB's exceptions, or std::bad_alloc for a corrupt size
         invalid(path, std::string("not a readable OpenVDB file (wrong magic number or corrupt header): ") + e.what());
     }
@@ -118,9 +160,12 @@ Volume read_vdb(const std::string& path, const ReadOptions& opt)
     Volume vol;
     vol.path = path;
     vol.format = "vdb";
+    // A double grid is converted, which reads every value: it is read whole.
+    const bool in_part = opt.regions && base->isType<openvdb::FloatGrid>();
     vol.grid = to_float_grid(base);
     vol.default_inside = default_inside(*vol.grid);
-    finish_volume(vol);
+    if (in_part) finish_partial_vdb(vol, *opt.regions);
+    else finish_volume(vol);
     return vol;
 }
 

@@ -68,6 +68,18 @@ CoordBBox owned_slab(const CoordBBox& lattice, int rank, int processes)
                      Coord(hi, hi, rank == processes - 1 ? hi : layer(rank + 1) - 1));
 }
 
+/// What a whole read of the file would hold, as samples_in_memory counts: 512 per leaf (a
+/// .vdb's from its topology, a dense file's covering its lattice).
+std::uint64_t samples_of_whole_file(const Volume& head)
+{
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    if (head.format == "vdb") return std::uint64_t(head.grid->tree().leafCount()) * Leaf::SIZE;
+    std::uint64_t leaves = 1;
+    for (int a = 0; a < 3; ++a)
+        leaves *= std::uint64_t((head.lattice.max()[a] >> Leaf::LOG2DIM) - (head.lattice.min()[a] >> Leaf::LOG2DIM) + 1);
+    return leaves * Leaf::SIZE;
+}
+
 /// What the first pass learns, joined over every process.
 struct WholeVolume {
     octree::FieldSummary summary;
@@ -89,7 +101,6 @@ WholeVolume first_pass(const std::string& path, const ReadOptions& read, const V
     const Volume slab =
         on_every_process(ranks, [&] { return read_regions(path, read, region.empty() ? std::vector<CoordBBox>{} : std::vector<CoordBBox>{region}); });
     WholeVolume out;
-    out.slab_samples = slab.grid->activeVoxelCount();
 
     // The tie rule's scan: this slab's part, then the whole volume's (SampleField's constructor).
     const double bg = slab.grid->background();
@@ -99,8 +110,8 @@ WholeVolume first_pass(const std::string& path, const ReadOptions& read, const V
     octree::scan_critical_values(*slab.grid, lattice, ring_reads_background, owned, scan);
     const std::vector<double> scans = ranks.all_gather(
         {scan.vmin, scan.vmax, scan.tie ? 1.0 : 0.0, scan.gap, double(octree::active_voxels_in(*slab.grid, owned)),
-         slab.partial && out.slab_samples ? double(slab.value_min) : HUGE_VAL,
-         slab.partial && out.slab_samples ? double(slab.value_max) : -HUGE_VAL});
+         slab.value_min <= slab.value_max ? double(slab.value_min) : HUGE_VAL,
+         slab.value_min <= slab.value_max ? double(slab.value_max) : -HUGE_VAL});
     octree::ValueScan whole(options.isovalue);
     double active = 0, sample_min = HUGE_VAL, sample_max = -HUGE_VAL;
     for (std::size_t k = 0; k + 6 < scans.size(); k += 7) {
@@ -120,9 +131,16 @@ WholeVolume first_pass(const std::string& path, const ReadOptions& read, const V
         return octree::summarize_scan(whole, lattice, options.isovalue, slab.grid->getName());
     });
 
-    // The crossings whose lower end this slab owns: the others read samples of other slabs.
+    // The crossings whose lower end this slab owns: the others read samples of other slabs. The
+    // search runs on the slab and the layer above it (its edges' upper ends), clipped so that it
+    // reads nothing beyond (a .vdb's other leaves are never loaded).
     const octree::SampleField field(slab.grid, options.isovalue, inside, out.summary);
-    std::vector<octree::EdgePoint> mine = octree::edge_crossings(field).points;
+    std::vector<octree::EdgePoint> mine;
+    CoordBBox clip = field.domain();
+    clip.min().z() = std::max(clip.min().z(), owned.min().z());
+    clip.max().z() = int(std::min<std::int64_t>(clip.max().z(), std::int64_t(owned.max().z()) + 1));
+    if (!owned.empty() && clip.min().z() <= clip.max().z())
+        mine = octree::edge_crossings(octree::SampleField(field, clip)).points;
     mine.erase(std::remove_if(mine.begin(), mine.end(), [&](const octree::EdgePoint& e) { return !owned.isInside(e.lower); }),
                mine.end());
     const auto sum_over_processes = [&](const std::vector<double>& part) {
@@ -140,6 +158,7 @@ WholeVolume first_pass(const std::string& path, const ReadOptions& read, const V
         for (auto& axis : out.slices)
             for (std::int64_t& n : axis) n = std::int64_t(total[k++]);
     }
+    out.slab_samples = octree::samples_in_memory(*slab.grid); // what the pass loaded
     if (ranks.size() > 1) {
         const BlockCuts cuts = options.block_count > 0 ? balanced_cuts(field.domain(), options.block_count, out.slices)
                                                        : cubic_cuts(field, options.block_voxels);
@@ -192,16 +211,17 @@ MeshResult mesh_isosurface_file(const std::string& path, const ReadOptions& read
     const BlockFieldSource source = [&](const std::vector<CoordBBox>& boxes) -> const octree::SampleField& {
         // No box: this process has no block (more processes than blocks). The tetrahedra's
         // request for the whole field never comes: runs with them read the whole file above.
+        if (blocks_field) most_read = std::max(most_read, octree::samples_in_memory(blocks_field->grid()));
         blocks_field.reset();
         const Volume part = read_regions(path, read, boxes);
-        most_read = std::max<std::uint64_t>(most_read, part.grid->activeVoxelCount());
         blocks_field = std::make_unique<octree::SampleField>(part.grid, options.isovalue, inside, whole.summary);
         return *blocks_field;
     };
     MeshResult r = mesh_partitioned(frame, plan, source, options, interrupter);
+    if (blocks_field) most_read = std::max(most_read, octree::samples_in_memory(blocks_field->grid()));
     const std::vector<double> reads = ranks.all_gather({double(most_read)});
     r.stats.partition.max_process_samples_read = std::uint64_t(*std::max_element(reads.begin(), reads.end()));
-    r.stats.partition.file_samples = std::uint64_t(head.lattice.volume());
+    r.stats.partition.file_samples = samples_of_whole_file(head);
     r.stats.seconds["slabs"] = t_slabs;
     r.stats.seconds["total"] += t_slabs;
     return r;

