@@ -185,9 +185,9 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
 /// part of the file (docs/partitioned.md): first one slab of it, for the tie rule's level and the
 /// crossings that place and weigh the blocks (every process learns the whole volume's numbers),
 /// then only its own blocks' boxes. The mesh is byte for byte mesh_isosurface's on the whole
-/// volume. Formats read in part: MRC/CCP4 and raw (ReadOptions::regions); others, and runs with
-/// tetrahedra or options.certify (which need every sample), are read whole on every process and
-/// meshed as mesh_isosurface does. Same exceptions as mesh_isosurface, and the readers' (the
+/// volume. Formats read in part: MRC/CCP4, raw and float .vdb grids (ReadOptions::regions);
+/// others (.inr, double grids), and runs with tetrahedra or options.certify (which need every
+/// sample), are read whole on every process and meshed as mesh_isosurface does. Same exceptions as mesh_isosurface, and the readers' (the
 /// messages start with the path); every process throws when one does.
 MeshResult mesh_isosurface_file(const std::string& path, const ReadOptions& read, const MeshOptions& options,
                                 Interrupter* interrupter = nullptr);
