@@ -162,15 +162,12 @@ WholeVolume first_pass(const std::string& path, const ReadOptions& read, const V
     if (ranks.size() > 1) {
         const BlockCuts cuts = options.block_count > 0 ? balanced_cuts(field.domain(), options.block_count, out.slices)
                                                        : cubic_cuts(field, options.block_voxels);
-        std::array<int, 3> collar = collar_voxels(field);
-        for (int growth = 0; growth <= kMaxCollarGrowths; ++growth) {
+        for (std::vector<double> part : block_work_per_collar(field, cuts, mine)) {
             // block_work counts one for each block's set-up besides its crossings: once in the sum.
-            std::vector<double> part = block_work(blocks_of(cuts, collar), mine);
             for (double& w : part) w -= 1;
             std::vector<double> total = sum_over_processes(part);
             for (double& w : total) w += 1;
             out.work.push_back(std::move(total));
-            for (int& c : collar) c += 2;
         }
     }
     return out;
@@ -182,10 +179,18 @@ MeshResult mesh_isosurface_file(const std::string& path, const ReadOptions& read
                                 Interrupter* interrupter)
 {
     check_mesh_options(options);
+    // The header alone for the formats read in part; the whole volume for the others.
+    Volume head = on_every_process(BlockRanks(options.transport), [&] { return read_regions(path, read, {}); });
+    return mesh_isosurface_file(std::move(head), read, options, interrupter);
+}
+
+MeshResult mesh_isosurface_file(Volume head, const ReadOptions& read, const MeshOptions& options,
+                                Interrupter* interrupter)
+{
+    check_mesh_options(options);
     const BlockRanks ranks(options.transport);
     const auto t0 = std::chrono::steady_clock::now();
-    // The header alone for the formats read in part; the whole volume for the others.
-    Volume head = on_every_process(ranks, [&] { return read_regions(path, read, {}); });
+    const std::string path = head.path;
     const bool partitioned = options.block_voxels > 0 || options.block_count > 0;
     if (!head.partial || !partitioned || options.tets != TetRegion::None || options.certify) {
         if (head.partial) head = on_every_process(ranks, [&] { return read_volume(path, read); });

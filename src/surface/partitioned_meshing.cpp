@@ -69,6 +69,22 @@ std::array<int, 3> collar_voxels(const octree::SampleField& field)
     return {2 * r[0] + 4, 2 * r[1] + 4, 2 * r[2] + 4};
 }
 
+std::array<int, 3> grown_collar(const octree::SampleField& field, int growth)
+{
+    std::array<int, 3> collar = collar_voxels(field);
+    for (int& c : collar) c += 2 * growth;
+    return collar;
+}
+
+std::vector<std::vector<double>> block_work_per_collar(const octree::SampleField& field, const BlockCuts& cuts,
+                                                       const std::vector<octree::EdgePoint>& crossings)
+{
+    std::vector<std::vector<double>> work;
+    for (int growth = 0; growth <= kMaxCollarGrowths; ++growth)
+        work.push_back(block_work(blocks_of(cuts, grown_collar(field, growth)), crossings));
+    return work;
+}
+
 namespace {
 
 using Blocks = std::vector<std::unique_ptr<BlockMesher>>;
@@ -264,13 +280,7 @@ PartitionPlan plan_partition(const octree::SampleField& field, const MeshOptions
     if (options.block_count > 0 || deal) crossings = octree::edge_crossings(field).points;
     plan.cuts = options.block_count > 0 ? balanced_cuts(field, options.block_count, crossings)
                                         : cubic_cuts(field, options.block_voxels);
-    if (deal) {
-        std::array<int, 3> collar = collar_voxels(field);
-        for (int growth = 0; growth <= kMaxCollarGrowths; ++growth) {
-            plan.work.push_back(block_work(blocks_of(plan.cuts, collar), crossings));
-            for (int& c : collar) c += 2;
-        }
-    }
+    if (deal) plan.work = block_work_per_collar(field, plan.cuts, crossings);
     return plan;
 }
 
@@ -296,13 +306,13 @@ MeshResult mesh_partitioned(const octree::SampleField& frame, const PartitionPla
     // The block's points differ from the global ones only within r + 2 voxels of its box's inner
     // faces (docs/partitioned.md, Lemma 1): its trusted box lies inside that margin.
     const int margin = *std::max_element(r.begin(), r.end()) + 2;
-    std::array<int, 3> collar = collar_voxels(frame);
     SharedInterrupter shared(interrupter);
     MeshResult result;
     MeshStats& st = result.stats;
     PartitionStats& ps = st.partition;
     std::vector<SeedPoint> inserted;
     for (int growth = 0;; ++growth) {
+        const std::array<int, 3> collar = grown_collar(frame, growth);
         const std::vector<BlockSpec> specs = blocks_of(plan.cuts, collar);
         const std::size_t n = specs.size();
         if (ranks.size() > 1) ranks.deal(plan.work.at(std::size_t(growth)));
@@ -348,7 +358,6 @@ MeshResult mesh_partitioned(const octree::SampleField& frame, const PartitionPla
                    << " with a collar of " << collar[0] << " voxels (bound: " << kMaxCollarGrowths << " collar growths)";
                 throw GuaranteeViolated(os.str());
             }
-            for (int& c : collar) c += 2;
             continue;
         }
         ps.blocks = int(n);

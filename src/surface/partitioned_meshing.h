@@ -42,6 +42,10 @@ constexpr int kMaxExchangeRounds = 64;
 /// Times the collar grows by two voxels when an owned facet's ball leaves its block.
 constexpr int kMaxCollarGrowths = 3;
 
+/// The collar after \p growth growths (0 <= growth <= kMaxCollarGrowths): collar_voxels(field),
+/// two voxels wider per growth.
+std::array<int, 3> grown_collar(const octree::SampleField& field, int growth);
+
 /// Blocks of \p block_voxels cells per axis covering the cells of field.domain(), in
 /// lexicographic (z, y, x) order (blocks_of(cubic_cuts(...))).
 /// \throw InvalidInput block_voxels < 1, or more than kMaxBlocks blocks
@@ -63,6 +67,11 @@ struct PartitionPlan {
     BlockCuts cuts;
     std::vector<std::vector<double>> work; ///< empty when the blocks are not dealt
 };
+
+/// Each block's work (block_work of \p crossings) at every collar width the run may try, one
+/// list per growth: PartitionPlan::work.
+std::vector<std::vector<double>> block_work_per_collar(const octree::SampleField& field, const BlockCuts& cuts,
+                                                       const std::vector<octree::EdgePoint>& crossings);
 
 /// The plan from \p field itself (its grid-edge crossings for the balanced cuts and the work).
 PartitionPlan plan_partition(const octree::SampleField& field, const MeshOptions& options, bool deal);
