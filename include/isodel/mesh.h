@@ -192,6 +192,13 @@ MeshResult mesh_isosurface(const openvdb::FloatGrid& grid, const MeshOptions& op
 MeshResult mesh_isosurface_file(const std::string& path, const ReadOptions& read, const MeshOptions& options,
                                 Interrupter* interrupter = nullptr);
 
+/// The same from the file's \p header, read already on every process as read_volume reads it
+/// with an empty ReadOptions::regions (the header alone for the formats read in part, the whole
+/// volume for the others); `isodel mesh` reads it first for the file's default inside side.
+/// Every process calls the same overload: the one above reads the header as a collective step.
+MeshResult mesh_isosurface_file(Volume header, const ReadOptions& read, const MeshOptions& options,
+                                Interrupter* interrupter = nullptr);
+
 
 /// Meshes {F = options.isovalue} of the adaptive interpolant F of \p volume (Property IV; e.g.
 /// from `isodel decimate`). E, G and the tetrahedra's G' follow the leaves, so coarse regions

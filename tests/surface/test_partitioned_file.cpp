@@ -83,8 +83,12 @@ void write_mrc(const std::string& path, const openvdb::FloatGrid& grid, const op
     write_bytes(path, mrc_bytes(s, [&](int x, int y, int z) { return double(acc.getValue(openvdb::Coord(x, y, z))); }));
 }
 
+/// Which overload of mesh_isosurface_file every process calls: the path, or the header read
+/// first, as `isodel mesh` does (every process the same one: both read the header collectively).
+enum class Entry { Path, Header };
+
 /// \p processes threads run mesh_isosurface_file on \p path; the first one's result.
-MeshResult mesh_on_processes(const std::string& path, MeshOptions mo, int processes)
+MeshResult mesh_on_processes(const std::string& path, MeshOptions mo, int processes, Entry entry = Entry::Path)
 {
     InProcessRun run(processes);
     std::vector<MeshResult> results(static_cast<std::size_t>(processes));
@@ -96,7 +100,11 @@ MeshResult mesh_on_processes(const std::string& path, MeshOptions mo, int proces
                 InProcessTransport t(run, r);
                 MeshOptions mine = mo;
                 mine.transport = &t;
-                results[std::size_t(r)] = mesh_isosurface_file(path, ReadOptions{}, mine);
+                ReadOptions header;
+                header.regions = std::vector<openvdb::CoordBBox>{};
+                results[std::size_t(r)] = entry == Entry::Header
+                                              ? mesh_isosurface_file(read_volume(path, header), ReadOptions{}, mine)
+                                              : mesh_isosurface_file(path, ReadOptions{}, mine);
             } catch (...) {
                 failures[std::size_t(r)] = std::current_exception();
             }
@@ -147,8 +155,10 @@ TEST_CASE("processes reading only their slab and blocks mesh what one process me
         const Volume whole = read_volume(path);
         for (const bool count : {true, false})
             for (int processes : {2, 3}) {
+                // Three processes start from the header read first: both entry points mesh alike.
+                const Entry entry = processes == 3 ? Entry::Header : Entry::Path;
                 INFO(c.name << (count ? ": a balanced block per process" : ": blocks of 12 voxels") << ", "
-                            << processes << " processes");
+                            << processes << " processes" << (entry == Entry::Header ? ", from the header" : ""));
                 MeshOptions mo;
                 mo.isovalue = c.isovalue;
                 mo.inside = c.inside;
@@ -157,7 +167,7 @@ TEST_CASE("processes reading only their slab and blocks mesh what one process me
                 if (count) mo.block_count = processes;
                 else mo.block_voxels = 12;
                 const MeshResult one = mesh_isosurface(*whole.grid, mo);
-                const MeshResult parts = mesh_on_processes(path, mo, processes);
+                const MeshResult parts = mesh_on_processes(path, mo, processes, entry);
                 check_same_mesh(parts.surface, one.surface);
                 CHECK(parts.stats.effective_isovalue == one.stats.effective_isovalue);
                 if (std::string(c.name) == "quantized") CHECK(one.stats.effective_isovalue < c.isovalue); // a tie
@@ -186,7 +196,7 @@ TEST_CASE("processes reading a delay-loaded .vdb level set mesh what one process
         mo.threads = 1;
         mo.block_count = processes;
         const MeshResult one = mesh_isosurface(*whole.grid, mo);
-        const MeshResult parts = mesh_on_processes(path, mo, processes);
+        const MeshResult parts = mesh_on_processes(path, mo, processes, processes == 3 ? Entry::Header : Entry::Path);
         check_same_mesh(parts.surface, one.surface);
         const PartitionStats& ps = parts.stats.partition;
         CHECK(ps.file_samples == whole.grid->tree().leafCount() * 512);

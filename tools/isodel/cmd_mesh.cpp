@@ -224,7 +224,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                                "already (isodel decimate); mesh it without --adaptive, or mesh the original");
         MeshResult res;
         try {
-            res = vol.partial                ? mesh_isosurface_file(o->in.path, read_options(o->in), mo, &progress)
+            res = vol.partial                ? mesh_isosurface_file(std::move(vol), read_options(o->in), mo, &progress)
                   : vol.adaptive_levels > 1 ? mesh_isosurface(load_adaptive(vol.path), mo, &progress)
                                             : mesh_isosurface(*vol.grid, mo, &progress);
         }
