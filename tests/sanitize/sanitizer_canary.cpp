@@ -4,10 +4,11 @@
 // hides a task body's race) fails the build instead of passing it.
 //   sanitizer_canary address     reads past the end of a heap array
 //   sanitizer_canary undefined   overflows a signed int
-//   sanitizer_canary thread      two TBB tasks add to one int without synchronisation
+//   sanitizer_canary thread      two TBB task bodies running at once add to one int
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include <atomic>
@@ -35,17 +36,35 @@ int signed_overflow()
 
 int racy_sum()
 {
+    // Two task bodies that are running at the same time both add to one int. The first to start
+    // waits (relaxed atomics: they order nothing for TSan) until the other has started, so
+    // neither body's additions can be ordered before the other's by the scheduler's own
+    // hand-offs, as they are when a worker steals its task only after the first body is over (a
+    // loaded machine). Rounds until two bodies overlapped (bound: 100 rounds, each waiting 2^24
+    // polls at most).
     int sum = 0;
-    // Rounds until two threads have run a body (a loaded machine may leave one idle for a
-    // round); the thread record is relaxed, so it orders nothing for TSan.
-    std::atomic<unsigned> threads_seen{0};
-    for (int round = 0; round < 1000 && std::bitset<32>(threads_seen.load()).count() < 2; ++round)
-        tbb::parallel_for(tbb::blocked_range<int>(0, 1 << 12, 1), [&](const tbb::blocked_range<int>& r) {
-            const int t = tbb::this_task_arena::current_thread_index();
-            threads_seen.fetch_or(1u << (t & 31), std::memory_order_relaxed);
-            for (int i = r.begin(); i != r.end(); ++i) sum += i & 1;
-        });
-    std::fprintf(stderr, "threads seen %x\n", threads_seen.load());
+    bool overlapped = false;
+    unsigned threads_seen = 0;
+    for (int round = 0; round < 100 && !overlapped; ++round) {
+        std::atomic<int> started{0};
+        std::atomic<unsigned> seen{0};
+        std::atomic<bool> met{false};
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, 2, 1),
+            [&](const tbb::blocked_range<int>&) {
+                seen.fetch_or(1u << (tbb::this_task_arena::current_thread_index() & 31), std::memory_order_relaxed);
+                // The body that started first sees the second start while it is still running.
+                const bool first = started.fetch_add(1, std::memory_order_relaxed) == 0;
+                for (long spin = 0; first && spin < (1L << 24) && started.load(std::memory_order_relaxed) < 2; ++spin) {
+                }
+                if (first && started.load(std::memory_order_relaxed) == 2) met.store(true, std::memory_order_relaxed);
+                for (int i = 0; i < 1000; ++i) sum += i & 1;
+            },
+            tbb::simple_partitioner());
+        overlapped = met.load() && std::bitset<32>(seen.load()).count() == 2;
+        threads_seen |= seen.load();
+    }
+    std::fprintf(stderr, "threads seen %x, bodies overlapped: %s\n", threads_seen, overlapped ? "yes" : "no");
     return sum;
 }
 
