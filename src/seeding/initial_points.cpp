@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <functional>
 
+#include <tbb/parallel_for.h>
+
 namespace isodel::mesher {
 namespace {
 
@@ -73,8 +75,6 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
     st.g_points = out.layer.points.size();
     st.bound_e = out.layer.bound_e;
     st.bound_n = out.layer.bound_n;
-    out.points.reserve(e.points.size() + out.layer.points.size());
-    std::uint32_t id = 0;
     // Section 5 (--snap): E points gathered around a sample give way to the sample.
     SnapResult snap;
     if (use_snap) {
@@ -88,16 +88,37 @@ InitialPoints initial_points(const octree::SampleField& field, const octree::Ada
         }
         snap = snap_edge_points(e.points, field, snap_radius, in_g);
     }
-    for (const auto& g : out.layer.points)
-        out.points.push_back({to_point(field.index_to_world(g.asVec3d())),
-                              {id++, snap.is_snapped_grid_point(g) ? PointKind::Snapped : PointKind::Grid}});
-    for (std::size_t i = 0; i < e.points.size(); ++i) {
-        if (use_snap && snap.snapped[i]) {
-            ++st.snapped;
-            continue;
+    // G, then E, each at its index: a point's id is its slot, so the parallel fill writes the
+    // same points in the same order at any thread count. Snapped E points leave no slot.
+    const std::size_t n_g = out.layer.points.size(), n_e = e.points.size();
+    std::vector<std::uint32_t> e_slot; // with --snap only: slots of the E points kept
+    std::size_t n_e_kept = n_e;
+    if (use_snap) {
+        e_slot.resize(n_e);
+        n_e_kept = 0;
+        for (std::size_t i = 0; i < n_e; ++i) {
+            e_slot[i] = std::uint32_t(n_e_kept);
+            if (!snap.snapped[i]) ++n_e_kept;
         }
-        out.points.push_back({to_point(field.index_to_world(edge_point_on_lattice(e.points[i], slabs))), {id++, PointKind::Edge}});
+        st.snapped += n_e - n_e_kept;
     }
+    out.points.resize(n_g + n_e_kept);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_g, 4096), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const openvdb::Coord& g = out.layer.points[i];
+            out.points[i] = {to_point(field.index_to_world(g.asVec3d())),
+                             {std::uint32_t(i), snap.is_snapped_grid_point(g) ? PointKind::Snapped : PointKind::Grid}};
+        }
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_e, 4096), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            if (use_snap && snap.snapped[i]) continue;
+            const std::size_t slot = n_g + (use_snap ? e_slot[i] : i);
+            out.points[slot] = {to_point(field.index_to_world(edge_point_on_lattice(e.points[i], slabs))),
+                                {std::uint32_t(slot), PointKind::Edge}};
+        }
+    });
+    std::uint32_t id = std::uint32_t(n_g + n_e_kept);
     auto tubes = thin_tube_points(field, out.crossed_cells);
     const auto necks = tunnel_shoulder_points(field, out.crossed_cells);
     tubes.insert(tubes.end(), necks.begin(), necks.end());
