@@ -8,11 +8,12 @@
 #include "octree/balance.h"
 #include "octree/edge_crossings.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <functional>
-
-#include <tbb/parallel_for.h>
 
 namespace isodel::mesher {
 namespace {
