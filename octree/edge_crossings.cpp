@@ -107,7 +107,10 @@ std::vector<Coord> candidate_blocks(const SampleField& field, const CoordBBox& l
     const bool background_inside = field.phi_of_value(tree.background()) > 0;
     const SampleField::Reader reader(field);
     std::vector<CoordBBox> other_side_tiles;
-    for_each_stored_tile(tree, [&](const CoordBBox& b, float value, bool) {
+    // Only tiles meeting the lower ends grown by one can add a block or meet a face of (c).
+    CoordBBox near = lower_ends;
+    near.expand(1);
+    for_each_stored_tile(tree, near, [&](const CoordBBox& b, float value, bool) {
         if ((field.phi_of_value(value) > 0) == background_inside) return;
         out.add_tile_faces(b, !background_inside, field, reader);
         other_side_tiles.push_back(b);

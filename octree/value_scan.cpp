@@ -38,18 +38,16 @@ void for_each_leaf(const Tree& tree, const CoordBBox& owned, ValueScan& scan, co
 void scan_stored_values(const openvdb::FloatGrid& grid, const CoordBBox& lattice, bool ring_reads_background,
                         const CoordBBox& owned, ValueScan& scan)
 {
-    for_each_stored_tile(grid.tree(), [&](const CoordBBox& b, float value, bool active) {
-        if (!owned.hasOverlap(b)) return;
-        // Inactive tiles beyond the lattice are read only through a ring that reads the background.
-        if (!active && !ring_reads_background && !lattice.hasOverlap(b)) return;
-        scan.consider(value);
-    });
-    for_each_leaf(grid.tree(), owned, scan, [&](const Tree::LeafNodeType& leaf, ValueScan& mine) {
-        for (auto v = leaf.cbeginValueAll(); v; ++v) {
-            const Coord c = v.getCoord();
-            if (!owned.isInside(c)) continue;
-            if (v.isValueOn() || ring_reads_background || lattice.isInside(c)) mine.consider(*v);
-        }
+    // F's samples that read the grid (sample_field.h): the lattice, and the ring around it when
+    // the ring reads the background; beyond them every sample reads "outside", whatever is stored.
+    CoordBBox samples = lattice;
+    if (ring_reads_background) samples.expand(1);
+    CoordBBox region = samples;
+    region.intersect(owned);
+    for_each_stored_tile(grid.tree(), region, [&](const CoordBBox&, float value, bool) { scan.consider(value); });
+    for_each_leaf(grid.tree(), region, scan, [&](const Tree::LeafNodeType& leaf, ValueScan& mine) {
+        for (auto v = leaf.cbeginValueAll(); v; ++v)
+            if (region.isInside(v.getCoord())) mine.consider(*v);
     });
 }
 
@@ -104,7 +102,7 @@ std::uint64_t active_voxels_in(const openvdb::FloatGrid& grid, const CoordBBox& 
         for (auto on = leaf->getValueMask().beginOn(); on; ++on)
             if (owned.isInside(leaf->offsetToGlobalCoord(on.pos()))) ++n;
     }
-    for_each_stored_tile(grid.tree(), [&](const CoordBBox& b, float, bool active) {
+    for_each_stored_tile(grid.tree(), owned, [&](const CoordBBox& b, float, bool active) {
         if (!active) return;
         CoordBBox part = b;
         part.intersect(owned);

@@ -51,7 +51,8 @@ inline openvdb::CoordBBox every_sample()
 }
 
 /// Every stored value of the domain whose sample lies in \p owned: active voxels and tiles, and
-/// inactive ones inside \p lattice (anywhere when the ring reads the background). Tiles are read
+/// inactive ones inside \p lattice (and in the ring around it when the ring reads the
+/// background; values stored beyond the domain are no samples of F). Tiles are read
 /// once, never expanded; inactive tiles of the background value are skipped, since the caller
 /// counts the background itself whenever an inactive sample can read it. A tile that merely
 /// meets \p owned is counted: its value is a sample of the volume either way.

@@ -66,7 +66,8 @@ void finish_partial_vdb(Volume& vol, const std::vector<openvdb::CoordBBox>& regi
         lo = std::min(lo, v);
         hi = std::max(hi, v);
     };
-    octree::for_each_stored_tile(tree, [&](const openvdb::CoordBBox& b, float v, bool active) {
+    // Active tiles lie in the lattice, and inactive ones are samples only there.
+    octree::for_each_stored_tile(tree, vol.lattice, [&](const openvdb::CoordBBox& b, float v, bool active) {
         if (active || (incomplete && vol.lattice.hasOverlap(b))) consider(v, b.min());
     });
     if (incomplete) consider(tree.background(), vol.lattice.min());

@@ -126,6 +126,53 @@ TEST_CASE("stored tiles are the tiles a value iterator finds, less inactive back
     CHECK(found == expect);
 }
 
+TEST_CASE("stored tiles meeting a region are the whole tree's tiles that meet it", "[octree][sparse]")
+{
+    auto grid = openvdb::FloatGrid::create(3.f);
+    auto& tree = grid->tree();
+    tree.addTile(3, Coord(-4096, 0, 0), -3.f, false);
+    tree.addTile(2, Coord(128, 0, -128), 1.f, true);
+    tree.addTile(2, Coord(-128, -256, 0), 2.f, false);
+    tree.addTile(1, Coord(-8, -8, 0), 3.f, true);
+    tree.addTile(1, Coord(16, 0, 0), 3.f, false); // inactive background: never listed
+    tree.addTile(1, Coord(24, 0, 0), 2.f, false);
+    tree.addTile(1, Coord(4088, 4088, 4088), -1.f, true); // the last slot of a top-level node
+    tree.setValueOn(Coord(0, 0, 0), 0.f);
+    using Tile = std::tuple<Coord, Coord, float, bool>;
+    std::vector<Tile> all;
+    isodel::octree::for_each_stored_tile(tree, [&](const openvdb::CoordBBox& b, float v, bool on) {
+        all.emplace_back(b.min(), b.max(), v, on);
+    });
+    REQUIRE(all.size() == 6);
+    std::vector<openvdb::CoordBBox> regions = {
+        {Coord(-1), Coord(0)},                   // the corner of four nodes: one tile meets it
+        {Coord(130, 5, -3), Coord(131, 6, -1)},  // inside the 128^3 tile
+        {Coord(24, 0, 0), Coord(24, 0, 0)},      // one voxel of an 8^3 tile
+        {Coord(32, 0, 0), Coord(40, 8, 8)},      // touches nothing
+        {Coord(-5000, 1, 1), Coord(-4096, 1, 1)}, // reaches the root tile by one voxel
+        {Coord(4095, 4095, 4095), Coord(5000, 5000, 5000)},
+        {Coord(10, 10, 10), Coord(0, 0, 0)},     // empty
+    };
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> at(-300, 300), size(0, 200);
+    for (int i = 0; i < 40; ++i) {
+        const Coord lo(at(rng), at(rng), at(rng));
+        regions.emplace_back(lo, lo.offsetBy(size(rng), size(rng), size(rng)));
+    }
+    for (const openvdb::CoordBBox& region : regions) {
+        INFO("region " << region);
+        std::vector<Tile> expect, found;
+        for (const Tile& t : all)
+            if (openvdb::CoordBBox(std::get<0>(t), std::get<1>(t)).hasOverlap(region)) expect.push_back(t);
+        isodel::octree::for_each_stored_tile(tree, region, [&](const openvdb::CoordBBox& b, float v, bool on) {
+            found.emplace_back(b.min(), b.max(), v, on);
+        });
+        std::sort(expect.begin(), expect.end());
+        std::sort(found.begin(), found.end());
+        CHECK(found == expect);
+    }
+}
+
 TEST_CASE("coords_of lists a mask's active tiles voxel by voxel", "[octree][sparse]")
 {
     openvdb::MaskGrid mask;

@@ -4,6 +4,8 @@
 // background strictly outside (a fog volume's 0 below v) is still read through the grid.
 #include "octree/sample_field.h"
 
+#include <isodel/errors.h>
+
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -62,4 +64,21 @@ TEST_CASE("an inactive sample at v inside the lattice is still a tie", "[octree]
     g->tree().setValueOff(Coord(3, 3, 3), 0.f); // reads the background 0 = v
     const SampleField f(g, 0.0, isodel::Inside::Above);
     CHECK(f.effective_isovalue() < 0.0);
+}
+
+TEST_CASE("values stored beyond the ring are no samples: they neither widen the range nor tie", "[octree][sample_field]")
+{
+    // Background -0.5 is strictly outside (inside = above 0), so the ring reads it; an inactive
+    // tile of 5 and one of 0 = v far beyond the ring are no samples of F.
+    auto g = dense_grid(8, -0.5f);
+    g->tree().addTile(1, Coord(800, 0, 0), 5.f, false);
+    g->tree().addTile(1, Coord(-808, 0, 0), 0.f, false);
+    const SampleField f(g, 0.0, isodel::Inside::Above);
+    CHECK(f.value_max() < 1.0); // the interior samples' max (below 1 by construction), not 5
+    CHECK(f.effective_isovalue() == 0.0);            // the tile at v is no tie
+    // A level only the far tile reaches is refused: the level set within the domain is empty.
+    CHECK_THROWS_AS(SampleField(g, 3.0, isodel::Inside::Above), isodel::InvalidInput);
+    // A tile that reaches into the ring is read there.
+    g->tree().addTile(1, Coord(-8, 0, 0), 0.75f, false);
+    CHECK(SampleField::Reader(SampleField(g, 0.0, isodel::Inside::Above)).phi(Coord(-1, 3, 3)) > 0);
 }
