@@ -196,7 +196,11 @@ EdgeCrossings edge_crossings(const SampleField& field, const BlockProgress& prog
         const std::array<int, 4> b{{q.lower.z(), q.lower.y(), q.lower.x(), q.axis}};
         return a < b;
     });
-    out.crossed_cells = voxel_set(out.points.size(), 4, [&](std::size_t i, auto& cells) {
+    // The four cells around an edge reach one below its lower end on the other two axes.
+    const CoordBBox bounds = union_of_boxes(out.points.size(), [&](std::size_t i) {
+        return CoordBBox(out.points[i].lower.offsetBy(-1), out.points[i].lower);
+    });
+    out.crossed_cells = voxel_set(out.points.size(), 4, bounds, [&](std::size_t i, auto& cells) {
         const EdgePoint& p = out.points[i];
         for (const Coord& cell : cells_around_edge(p.lower, p.axis)) cells.setValueOn(cell);
     }).coords;

@@ -74,7 +74,14 @@ ProtectiveLayer protective_layer(const SampleField& field, const std::vector<Coo
     // G: every grid point within r of a crossed cell's corners, marked in parallel over the
     // crossed cells and listed in a mask's order (voxel_set.h).
     const std::size_t block = std::size_t(2 * r[0] + 2) * (2 * r[1] + 2) * (2 * r[2] + 2);
-    VoxelSet g = voxel_set(crossed_cells.size(), block, [&](std::size_t i, auto& acc) {
+    openvdb::CoordBBox bounds = union_of_boxes(crossed_cells.size(), [&](std::size_t i) {
+        return openvdb::CoordBBox(crossed_cells[i], crossed_cells[i].offsetBy(1));
+    });
+    if (!bounds.empty()) {
+        bounds.min() -= Coord(r[0], r[1], r[2]);
+        bounds.max() += Coord(r[0], r[1], r[2]);
+    }
+    VoxelSet g = voxel_set(crossed_cells.size(), block, bounds, [&](std::size_t i, auto& acc) {
         const Coord c = crossed_cells[i];
         for (int z = c.z() - r[2]; z <= c.z() + 1 + r[2]; ++z)
             for (int y = c.y() - r[1]; y <= c.y() + 1 + r[1]; ++y)

@@ -3,12 +3,17 @@
 // the iteration order of an OpenVDB MaskTree holding them. That order is a function of the set
 // alone (root table by coordinate, then child offsets, then voxel offsets), so per-thread masks
 // joined by a topology union list the same voxels in the same order at any thread count, and a
-// sorted list with the same order (vdb_order_less) lists them the same way without any tree.
+// sorted list with the same order (vdb_order_less) lists them the same way without any tree,
+// as does a bitmap over the set's box read block by block in that order (voxel_bitmap.h).
+#include "octree/voxel_bitmap.h"
+#include "octree/voxel_order.h"
+
 #include <openvdb/openvdb.h>
 #include <openvdb/tree/LeafManager.h>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -17,42 +22,6 @@
 #include <vector>
 
 namespace isodel::octree {
-
-/// A voxel's position in a MaskTree's iteration order: the top-level node's origin (the root
-/// table is ordered by it), then the offsets within the top node, the middle node and the leaf,
-/// each x-major as OpenVDB's coordToOffset numbers them. The offsets (36 bits) locate the voxel
-/// within its top node exactly, so a key made of an origin's rank and the offsets is also the
-/// voxel itself.
-namespace vdb_order {
-using Top = openvdb::MaskTree::RootNodeType::ChildNodeType;
-using Middle = Top::ChildNodeType;
-using Leaf = Middle::ChildNodeType;
-constexpr int kLeafBits = 3 * Leaf::LOG2DIM, kMiddleBits = 3 * Middle::LOG2DIM, kTopBits = 3 * Top::LOG2DIM;
-constexpr int kOffsetBits = kTopBits + kMiddleBits + kLeafBits;
-
-inline openvdb::Coord origin(const openvdb::Coord& c) { return c & ~(Top::DIM - 1); }
-inline std::uint64_t offsets(const openvdb::Coord& c)
-{
-    return (std::uint64_t(Top::coordToOffset(c)) << (kMiddleBits + kLeafBits)) |
-           (std::uint64_t(Middle::coordToOffset(c)) << kLeafBits) | Leaf::coordToOffset(c);
-}
-inline openvdb::Coord voxel(const openvdb::Coord& origin, std::uint64_t offsets)
-{
-    openvdb::Coord top, middle;
-    Top::offsetToLocalCoord(openvdb::Index(offsets >> (kMiddleBits + kLeafBits)), top);
-    Middle::offsetToLocalCoord(openvdb::Index((offsets >> kLeafBits) & ((1u << kMiddleBits) - 1)), middle);
-    const openvdb::Coord leaf = Leaf::offsetToLocalCoord(openvdb::Index(offsets & ((1u << kLeafBits) - 1)));
-    const auto scaled = [](const openvdb::Coord& c, int s) { return openvdb::Coord(c.x() * s, c.y() * s, c.z() * s); };
-    return origin + scaled(top, int(Middle::DIM)) + scaled(middle, int(Leaf::DIM)) + leaf;
-}
-} // namespace vdb_order
-
-/// Whether \p a comes before \p b in a MaskTree's iteration order.
-inline bool vdb_order_less(const openvdb::Coord& a, const openvdb::Coord& b)
-{
-    const openvdb::Coord oa = vdb_order::origin(a), ob = vdb_order::origin(b);
-    return oa < ob || (oa == ob && vdb_order::offsets(a) < vdb_order::offsets(b));
-}
 
 /// \p voxels, each once, sorted by vdb_order_less: 64-bit keys (the rank of the voxel's top
 /// node among those touched, then its offsets) sorted as integers.
@@ -120,15 +89,47 @@ struct VoxelSet {
 /// however few voxels it holds, which dominates a small volume's whole run; a small volume
 /// around the origin touches eight top-level nodes.
 constexpr std::size_t kSortedVoxelSetMarks = std::size_t(1) << 16;
+/// A box of at most kBitmapVoxels voxels (16 MiB of bits) and at most kBitsPerMark voxels
+/// per mark (8 bytes per mark, less than a sorted mark's coordinates) is marked as bits
+/// (voxel_bitmap.h): no sort, no tree, and every thread marks.
+constexpr std::uint64_t kBitmapVoxels = std::uint64_t(1) << 27, kBitsPerMark = 64;
+
+/// The smallest box holding \p box_of(i) for every i in [0, n), found in parallel (a union of
+/// boxes, the same in any order); empty when n is 0.
+template <typename BoxOf>
+openvdb::CoordBBox union_of_boxes(std::size_t n, const BoxOf& box_of)
+{
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 4096), openvdb::CoordBBox(),
+        [&](const tbb::blocked_range<std::size_t>& r, openvdb::CoordBBox box) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) box.expand(box_of(i));
+            return box;
+        },
+        [](openvdb::CoordBBox a, const openvdb::CoordBBox& b) {
+            a.expand(b);
+            return a;
+        });
+}
 
 /// The union over i in [0, n) of the voxels \p mark(i, sink) sets on with sink.setValueOn(c),
-/// about \p marks_per_item each: sorted on one thread when there are few, else marked in
-/// parallel into per-thread masks joined by a topology union.
+/// about \p marks_per_item each, all inside \p bounds: as bits when \p bounds is small enough
+/// (every thread marking one bitmap), else sorted on one thread when there are few marks, else
+/// marked in parallel into per-thread masks joined by a topology union.
 template <typename Mark>
-VoxelSet voxel_set(std::size_t n, std::size_t marks_per_item, const Mark& mark)
+VoxelSet voxel_set(std::size_t n, std::size_t marks_per_item, const openvdb::CoordBBox& bounds, const Mark& mark)
 {
     VoxelSet out;
-    if (n * marks_per_item <= kSortedVoxelSetMarks) {
+    if (n == 0 || bounds.empty()) return out;
+    const std::uint64_t marks = std::uint64_t(n) * marks_per_item;
+    if (bounds.volume() <= kBitmapVoxels && bounds.volume() <= kBitsPerMark * marks) {
+        VoxelBitmap bits(bounds);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) mark(i, bits);
+        });
+        out.coords = bits.coords();
+        return out;
+    }
+    if (marks <= kSortedVoxelSetMarks) {
         struct Sink {
             std::vector<openvdb::Coord>& to;
             void setValueOn(const openvdb::Coord& c) { to.push_back(c); }

@@ -53,7 +53,9 @@ std::vector<Coord> serial_coords(const std::vector<Coord>& cells)
 std::vector<Coord> parallel_coords(const std::vector<Coord>& cells, int threads, bool* sorted = nullptr)
 {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-    const auto set = isodel::octree::voxel_set(cells.size(), 8, [&](std::size_t i, auto& acc) {
+    const openvdb::CoordBBox bounds = isodel::octree::union_of_boxes(
+        cells.size(), [&](std::size_t i) { return openvdb::CoordBBox(cells[i], cells[i].offsetBy(1)); });
+    const auto set = isodel::octree::voxel_set(cells.size(), 8, bounds, [&](std::size_t i, auto& acc) {
         for (int d = 0; d < 8; ++d) acc.setValueOn(cells[i].offsetBy(d & 1, (d >> 1) & 1, (d >> 2) & 1));
     });
     if (sorted) *sorted = !set.mask;
@@ -84,8 +86,8 @@ TEST_CASE("parallel masks list the serial mask's voxels in its order", "[octree]
         REQUIRE(serial.size() > 10000);
         CHECK(parallel_coords(cells, 1) == serial);
         CHECK(parallel_coords(cells, 2) == serial);
-        // Few items are sorted by vdb_order_less (no tree at all): the same voxels, same order,
-        // across root entries and negative coordinates.
+        // Few items far apart are sorted by vdb_order_less (no tree at all): the same voxels,
+        // same order, across root entries and negative coordinates.
         bool sorted = false;
         std::vector<Coord> few;
         for (std::size_t i = 0; i < cells.size(); i += cells.size() / 200) few.push_back(cells[i]);
@@ -95,6 +97,27 @@ TEST_CASE("parallel masks list the serial mask's voxels in its order", "[octree]
         CHECK(sorted);
         CHECK(parallel_coords(cells, 2, &sorted) == serial);
         CHECK(!sorted);
+    }
+}
+
+TEST_CASE("a bitmap over a small box lists the serial mask's voxels in its order", "[octree][sparse]")
+{
+    // A cluster across the corner of eight top-level nodes (negative coordinates too), dense
+    // enough that voxel_set marks bits rather than sorting or building trees.
+    std::mt19937 rng(11);
+    for (const Coord centre : {Coord(4096, -4096, 0), Coord(0, 0, 0), Coord(-77, 130, 4095)}) {
+        for (int half : {2, 9, 40}) {
+            std::uniform_int_distribution<int> near(-half, half);
+            std::vector<Coord> cells;
+            for (int i = 0; i < 30 * half * half; ++i) cells.push_back(centre + Coord(near(rng), near(rng), near(rng)));
+            INFO("centre " << centre << ", half width " << half);
+            bool no_mask = false;
+            const auto serial = serial_coords(cells);
+            CHECK(parallel_coords(cells, 1, &no_mask) == serial);
+            CHECK(no_mask);
+            CHECK(parallel_coords(cells, 2, &no_mask) == serial);
+            CHECK(no_mask);
+        }
     }
 }
 
