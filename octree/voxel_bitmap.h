@@ -15,8 +15,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cassert>
 #include <bitset>
+#include <cassert>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -68,10 +68,11 @@ public:
         });
         // Every top-level origin between the box's two corners, in root order.
         const openvdb::Coord o0 = vdb_order::origin(lo_), o1 = vdb_order::origin(block_origin(count_ - 1));
+        constexpr std::int64_t step = vdb_order::Top::DIM;
         std::vector<openvdb::Coord> origins;
-        for (int x = o0.x(); x <= o1.x(); x += vdb_order::Top::DIM)
-            for (int y = o0.y(); y <= o1.y(); y += vdb_order::Top::DIM)
-                for (int z = o0.z(); z <= o1.z(); z += vdb_order::Top::DIM) origins.emplace_back(x, y, z);
+        for (std::int64_t x = o0.x(); x <= o1.x(); x += step)
+            for (std::int64_t y = o0.y(); y <= o1.y(); y += step)
+                for (std::int64_t z = o0.z(); z <= o1.z(); z += step) origins.emplace_back(int(x), int(y), int(z));
         std::sort(origins.begin(), origins.end());
         std::vector<std::pair<std::uint64_t, std::size_t>> order; // (key, block)
         for (std::size_t b = 0; b < count_; ++b) {
