@@ -32,8 +32,9 @@ struct ProtectiveLayer {
     int bound_e = 4;                    ///< cells a Voronoi cell of an E point may meet (bound_n if sheared)
     int bound_n = 27;                   ///< ... of an N point
     std::vector<Coord> points;          ///< G, in deterministic order
-    /// G as a mask when it was built as one (many crossed cells), else null: the mesher's set of
-    /// grid points starts from it instead of building the same tree again.
+    /// G as a mask when it was built as one (many crossed cells spread over a large box), else
+    /// null: the mesher's set of grid points starts from it instead of building the same tree
+    /// again, and builds it from \ref points when it is null.
     openvdb::MaskGrid::Ptr mask;
 };
 

@@ -55,7 +55,8 @@ inline openvdb::CoordBBox every_sample()
 /// background; values stored beyond the domain are no samples of F). Tiles are read
 /// once, never expanded; inactive tiles of the background value are skipped, since the caller
 /// counts the background itself whenever an inactive sample can read it. A tile that merely
-/// meets \p owned is counted: its value is a sample of the volume either way.
+/// meets the samples of \p owned (\p owned within the lattice, or within the lattice and its
+/// ring when the ring reads the background) is counted: its value is a sample of F either way.
 void scan_stored_values(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& lattice, bool ring_reads_background,
                         const openvdb::CoordBBox& owned, ValueScan& scan);
 

@@ -16,9 +16,9 @@
 #include <algorithm>
 #include <atomic>
 #include <bitset>
-#include <cassert>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -28,8 +28,7 @@ class VoxelBitmap {
 public:
     /// Bits for every voxel of \p box (not empty), all clear; the box is widened to whole 8^3 blocks.
     explicit VoxelBitmap(const openvdb::CoordBBox& box)
-        : lo_(box.min() & ~(kLeafDim - 1)),
-          blocks_((((box.max() & ~(kLeafDim - 1)) - lo_) >> kLeafLog2) + openvdb::Coord(1)),
+        : lo_(box.min() & ~(kLeafDim - 1)), blocks_(blocks_covering(box)),
           count_(std::size_t(blocks_.x()) * blocks_.y() * blocks_.z()), words_(new std::atomic<std::uint64_t>[count_ * 8])
     {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count_ * 8, 1 << 14), [&](const auto& r) {
@@ -37,12 +36,21 @@ public:
         });
     }
 
-    /// Sets voxel \p c (inside the box); safe from several threads at once.
+    /// The voxels a bitmap of \p box holds: its whole 8^3 blocks.
+    static std::uint64_t voxels_covering(const openvdb::CoordBBox& box)
+    {
+        const openvdb::Coord b = blocks_covering(box);
+        return std::uint64_t(b.x()) * std::uint64_t(b.y()) * std::uint64_t(b.z()) * (kLeafDim * kLeafDim * kLeafDim);
+    }
+
+    /// Sets voxel \p c (inside the box); safe from several threads at once. \throw
+    /// std::logic_error for a voxel outside the box (a caller's bounds were wrong).
     void setValueOn(const openvdb::Coord& c)
     {
         const openvdb::Coord d = c - lo_;
-        assert(d.x() >= 0 && d.y() >= 0 && d.z() >= 0 && (d.x() >> kLeafLog2) < blocks_.x() &&
-               (d.y() >> kLeafLog2) < blocks_.y() && (d.z() >> kLeafLog2) < blocks_.z());
+        if (d.x() < 0 || d.y() < 0 || d.z() < 0 || (d.x() >> kLeafLog2) >= blocks_.x() ||
+            (d.y() >> kLeafLog2) >= blocks_.y() || (d.z() >> kLeafLog2) >= blocks_.z())
+            throw std::logic_error("voxel bitmap: a mark outside the box its caller gave");
         const std::size_t block = (std::size_t(d.x() >> kLeafLog2) * blocks_.y() + std::size_t(d.y() >> kLeafLog2)) * blocks_.z() +
                                   std::size_t(d.z() >> kLeafLog2);
         std::atomic<std::uint64_t>& word = words_[block * 8 + std::size_t(d.x() & (kLeafDim - 1))];
@@ -104,6 +112,12 @@ public:
 private:
     static constexpr int kLeafLog2 = 3, kLeafDim = 1 << kLeafLog2;
     static_assert(vdb_order::Leaf::LOG2DIM == kLeafLog2, "blocks are OpenVDB leaves");
+
+    /// The 8^3 blocks along each axis that \p box (not empty) meets.
+    static openvdb::Coord blocks_covering(const openvdb::CoordBBox& box)
+    {
+        return (((box.max() & ~(kLeafDim - 1)) - (box.min() & ~(kLeafDim - 1))) >> kLeafLog2) + openvdb::Coord(1);
+    }
 
     openvdb::Coord block_origin(std::size_t b) const
     {

@@ -80,8 +80,10 @@ inline std::vector<openvdb::Coord> coords_of(const openvdb::MaskTree& mask)
 
 /// A set of voxels in MaskTree order, and the mask itself when it was built as one.
 struct VoxelSet {
+    enum class Built { Bitmap, Sorted, Masks };
     std::vector<openvdb::Coord> coords; ///< each voxel once, in vdb_order_less order
-    openvdb::MaskGrid::Ptr mask;        ///< the same set; null when it was built by sorting
+    openvdb::MaskGrid::Ptr mask;        ///< the same set when it was built in masks, else null
+    Built built = Built::Sorted;        ///< which of the three ways made it (the list is the same)
 };
 
 /// Few marks are sorted rather than put in a tree: a MaskTree costs its internal nodes' tables
@@ -89,8 +91,8 @@ struct VoxelSet {
 /// however few voxels it holds, which dominates a small volume's whole run; a small volume
 /// around the origin touches eight top-level nodes.
 constexpr std::size_t kSortedVoxelSetMarks = std::size_t(1) << 16;
-/// A box of at most kBitmapVoxels voxels (16 MiB of bits) and at most kBitsPerMark voxels
-/// per mark (8 bytes per mark, less than a sorted mark's coordinates) is marked as bits
+/// A box of at most kBitmapVoxels voxels (16 MiB of bits), counted in whole 8^3 blocks as the
+/// bitmap holds it, and at most kBitsPerMark voxels per mark (8 bytes per mark, less than a sorted mark's coordinates) is marked as bits
 /// (voxel_bitmap.h): no sort, no tree, and every thread marks.
 constexpr std::uint64_t kBitmapVoxels = std::uint64_t(1) << 27, kBitsPerMark = 64;
 
@@ -121,7 +123,9 @@ VoxelSet voxel_set(std::size_t n, std::size_t marks_per_item, const openvdb::Coo
     VoxelSet out;
     if (n == 0 || bounds.empty()) return out;
     const std::uint64_t marks = std::uint64_t(n) * marks_per_item;
-    if (bounds.volume() <= kBitmapVoxels && bounds.volume() <= kBitsPerMark * marks) {
+    const std::uint64_t bitmap_voxels = VoxelBitmap::voxels_covering(bounds);
+    if (bitmap_voxels <= kBitmapVoxels && bitmap_voxels <= kBitsPerMark * marks) {
+        out.built = VoxelSet::Built::Bitmap;
         VoxelBitmap bits(bounds);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t i = r.begin(); i != r.end(); ++i) mark(i, bits);
@@ -138,6 +142,7 @@ VoxelSet voxel_set(std::size_t n, std::size_t marks_per_item, const openvdb::Coo
         out.coords = sorted_in_vdb_order(out.coords);
         return out;
     }
+    out.built = VoxelSet::Built::Masks;
     out.mask = openvdb::MaskGrid::create();
     tbb::enumerable_thread_specific<openvdb::MaskTree> local;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {

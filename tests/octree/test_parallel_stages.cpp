@@ -50,7 +50,9 @@ std::vector<Coord> serial_coords(const std::vector<Coord>& cells)
     return out;
 }
 
-std::vector<Coord> parallel_coords(const std::vector<Coord>& cells, int threads, bool* sorted = nullptr)
+using Built = isodel::octree::VoxelSet::Built;
+
+std::vector<Coord> parallel_coords(const std::vector<Coord>& cells, int threads, Built* built = nullptr)
 {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     const openvdb::CoordBBox bounds = isodel::octree::union_of_boxes(
@@ -58,7 +60,8 @@ std::vector<Coord> parallel_coords(const std::vector<Coord>& cells, int threads,
     const auto set = isodel::octree::voxel_set(cells.size(), 8, bounds, [&](std::size_t i, auto& acc) {
         for (int d = 0; d < 8; ++d) acc.setValueOn(cells[i].offsetBy(d & 1, (d >> 1) & 1, (d >> 2) & 1));
     });
-    if (sorted) *sorted = !set.mask;
+    if (built) *built = set.built;
+    CHECK(bool(set.mask) == (set.built == Built::Masks));
     if (set.mask) CHECK(isodel::octree::coords_of(set.mask->tree()) == set.coords);
     return set.coords;
 }
@@ -88,37 +91,57 @@ TEST_CASE("parallel masks list the serial mask's voxels in its order", "[octree]
         CHECK(parallel_coords(cells, 2) == serial);
         // Few items far apart are sorted by vdb_order_less (no tree at all): the same voxels,
         // same order, across root entries and negative coordinates.
-        bool sorted = false;
+        Built built = Built::Bitmap;
         std::vector<Coord> few;
         for (std::size_t i = 0; i < cells.size(); i += cells.size() / 200) few.push_back(cells[i]);
         few.push_back(Coord(-1, -1, -1));
         few.push_back(Coord(4095, -4097, 7));
-        CHECK(parallel_coords(few, 2, &sorted) == serial_coords(few));
-        CHECK(sorted);
-        CHECK(parallel_coords(cells, 2, &sorted) == serial);
-        CHECK(!sorted);
+        CHECK(parallel_coords(few, 2, &built) == serial_coords(few));
+        CHECK(built == Built::Sorted);
+        CHECK(parallel_coords(cells, 2, &built) == serial);
+        CHECK(built == Built::Masks);
     }
 }
 
 TEST_CASE("a bitmap over a small box lists the serial mask's voxels in its order", "[octree][sparse]")
 {
-    // A cluster across the corner of eight top-level nodes (negative coordinates too), dense
-    // enough that voxel_set marks bits rather than sorting or building trees.
+    // Clusters across the corners of top-level nodes (eight at the first two centres, two at the
+    // third), negative coordinates, and pairs of clusters with empty blocks between them in a
+    // box of unequal sides, dense enough that voxel_set marks bits rather than sorting or
+    // building trees.
     std::mt19937 rng(11);
     for (const Coord centre : {Coord(4096, -4096, 0), Coord(0, 0, 0), Coord(-77, 130, 4095)}) {
         for (int half : {2, 9, 40}) {
-            std::uniform_int_distribution<int> near(-half, half);
-            std::vector<Coord> cells;
-            for (int i = 0; i < 30 * half * half; ++i) cells.push_back(centre + Coord(near(rng), near(rng), near(rng)));
-            INFO("centre " << centre << ", half width " << half);
-            bool no_mask = false;
-            const auto serial = serial_coords(cells);
-            CHECK(parallel_coords(cells, 1, &no_mask) == serial);
-            CHECK(no_mask);
-            CHECK(parallel_coords(cells, 2, &no_mask) == serial);
-            CHECK(no_mask);
+            for (const Coord apart : {Coord(0, 0, 0), Coord(5 * half + 24, 0, 3 * half + 9)}) {
+                std::uniform_int_distribution<int> near(-half, half);
+                std::vector<Coord> cells;
+                for (int i = 0; i < 30 * half * half; ++i) {
+                    const Coord c = centre + Coord(near(rng), near(rng), near(rng));
+                    cells.push_back(i % 2 ? c + apart : c);
+                }
+                INFO("centre " << centre << ", half width " << half << ", second cluster at " << apart);
+                Built built = Built::Sorted;
+                const auto serial = serial_coords(cells);
+                CHECK(parallel_coords(cells, 1, &built) == serial);
+                CHECK(built == Built::Bitmap);
+                CHECK(parallel_coords(cells, 2, &built) == serial);
+                CHECK(built == Built::Bitmap);
+            }
         }
     }
+}
+
+TEST_CASE("a bitmap refuses a mark outside the box it was given", "[octree][sparse]")
+{
+    isodel::octree::VoxelBitmap bits(openvdb::CoordBBox(Coord(-3, 0, 0), Coord(4, 9, 2)));
+    bits.setValueOn(Coord(-3, 0, 0));
+    bits.setValueOn(Coord(4, 15, 7)); // the box's blocks reach y = 15, z = 7
+    CHECK_THROWS_AS(bits.setValueOn(Coord(-9, 0, 0)), std::logic_error);
+    CHECK_THROWS_AS(bits.setValueOn(Coord(8, 0, 0)), std::logic_error);
+    CHECK_THROWS_AS(bits.setValueOn(Coord(0, 16, 0)), std::logic_error);
+    CHECK(bits.coords() == std::vector<Coord>{Coord(-3, 0, 0), Coord(4, 15, 7)});
+    CHECK(isodel::octree::VoxelBitmap::voxels_covering(openvdb::CoordBBox(Coord(-3, 0, 0), Coord(4, 9, 2))) ==
+          2 * 2 * 1 * 512);
 }
 
 TEST_CASE("stored tiles are the tiles a value iterator finds, less inactive background ones", "[octree][sparse]")
@@ -168,7 +191,7 @@ TEST_CASE("stored tiles meeting a region are the whole tree's tiles that meet it
     });
     REQUIRE(all.size() == 6);
     std::vector<openvdb::CoordBBox> regions = {
-        {Coord(-1), Coord(0)},                   // the corner of four nodes: one tile meets it
+        {Coord(-1), Coord(0)},                   // the corner of eight nodes: one tile meets it
         {Coord(130, 5, -3), Coord(131, 6, -1)},  // inside the 128^3 tile
         {Coord(24, 0, 0), Coord(24, 0, 0)},      // one voxel of an 8^3 tile
         {Coord(32, 0, 0), Coord(40, 8, 8)},      // touches nothing
