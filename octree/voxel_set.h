@@ -92,8 +92,9 @@ struct VoxelSet {
 /// around the origin touches eight top-level nodes.
 constexpr std::size_t kSortedVoxelSetMarks = std::size_t(1) << 16;
 /// A box of at most kBitmapVoxels voxels (16 MiB of bits), counted in whole 8^3 blocks as the
-/// bitmap holds it, and at most kBitsPerMark voxels per mark (8 bytes per mark, less than a sorted mark's coordinates) is marked as bits
-/// (voxel_bitmap.h): no sort, no tree, and every thread marks.
+/// bitmap holds it, and at most kBitsPerMark voxels per mark (8 bytes per mark, less than a
+/// sorted mark's coordinates), is marked as bits (voxel_bitmap.h): no sort, no tree, and every
+/// thread marks.
 constexpr std::uint64_t kBitmapVoxels = std::uint64_t(1) << 27, kBitsPerMark = 64;
 
 /// The smallest box holding \p box_of(i) for every i in [0, n), found in parallel (a union of
