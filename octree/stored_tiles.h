@@ -87,8 +87,8 @@ void for_each_stored_tile(const TreeT& tree, const openvdb::CoordBBox& region, c
 template <typename TreeT, typename Fn>
 void for_each_stored_tile(const TreeT& tree, const Fn& fn)
 {
-    const openvdb::CoordBBox everywhere(openvdb::Coord(std::numeric_limits<int>::min()),
-                                        openvdb::Coord(std::numeric_limits<int>::max()));
+    const auto everywhere = openvdb::CoordBBox(openvdb::Coord(std::numeric_limits<int>::min()),
+                                               openvdb::Coord(std::numeric_limits<int>::max()));
     for_each_stored_tile(tree, everywhere, fn);
 }
 
