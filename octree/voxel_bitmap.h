@@ -64,8 +64,7 @@ public:
     /// every mark has been made.
     std::vector<openvdb::Coord> coords() const
     {
-        // The occupied blocks in the order a tree visits its leaves: 64-bit keys as in
-        // sorted_in_vdb_order, the rank of the top-level origin above the node offsets.
+        // The occupied blocks in the order a tree visits its leaves, by vdb_order::key.
         std::vector<std::size_t> count(count_);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count_, 256), [&](const auto& r) {
             for (std::size_t b = r.begin(); b != r.end(); ++b) {
@@ -83,12 +82,8 @@ public:
                 for (std::int64_t z = o0.z(); z <= o1.z(); z += step) origins.emplace_back(int(x), int(y), int(z));
         std::sort(origins.begin(), origins.end());
         std::vector<std::pair<std::uint64_t, std::size_t>> order; // (key, block)
-        for (std::size_t b = 0; b < count_; ++b) {
-            if (!count[b]) continue;
-            const openvdb::Coord o = block_origin(b);
-            const auto rank = std::uint64_t(std::lower_bound(origins.begin(), origins.end(), vdb_order::origin(o)) - origins.begin());
-            order.emplace_back(rank << vdb_order::kOffsetBits | vdb_order::offsets(o), b);
-        }
+        for (std::size_t b = 0; b < count_; ++b)
+            if (count[b]) order.emplace_back(vdb_order::key(origins, block_origin(b)), b);
         std::sort(order.begin(), order.end());
         std::vector<std::size_t> first(order.size() + 1, 0);
         for (std::size_t i = 0; i < order.size(); ++i) first[i + 1] = first[i] + count[order[i].second];

@@ -4,7 +4,9 @@
 // crossed cells are listed (voxel_set.h), whatever builds the set.
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 namespace isodel::octree {
 
@@ -34,6 +36,14 @@ inline openvdb::Coord voxel(const openvdb::Coord& origin, std::uint64_t offsets)
     const openvdb::Coord leaf = Leaf::offsetToLocalCoord(openvdb::Index(offsets & ((1u << kLeafBits) - 1)));
     const auto scaled = [](const openvdb::Coord& c, int s) { return openvdb::Coord(c.x() * s, c.y() * s, c.z() * s); };
     return origin + scaled(top, int(Middle::DIM)) + scaled(middle, int(Leaf::DIM)) + leaf;
+}
+/// \p c's 64-bit key: the rank of its top-level origin among \p origins (sorted, holding it)
+/// above its offsets. Keys sort as vdb_order_less, and voxel(origins[key >> kOffsetBits],
+/// key & offset mask) gives \p c back.
+inline std::uint64_t key(const std::vector<openvdb::Coord>& origins, const openvdb::Coord& c)
+{
+    const auto rank = std::uint64_t(std::lower_bound(origins.begin(), origins.end(), origin(c)) - origins.begin());
+    return rank << kOffsetBits | offsets(c);
 }
 } // namespace vdb_order
 

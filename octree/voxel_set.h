@@ -39,11 +39,7 @@ inline std::vector<openvdb::Coord> sorted_in_vdb_order(const std::vector<openvdb
     constexpr std::size_t grain = 4096;
     std::vector<std::uint64_t> keys(voxels.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels.size(), grain), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            const openvdb::Coord& c = voxels[i];
-            const auto rank = std::uint64_t(std::lower_bound(origins.begin(), origins.end(), vdb_order::origin(c)) - origins.begin());
-            keys[i] = rank << vdb_order::kOffsetBits | vdb_order::offsets(c);
-        }
+        for (std::size_t i = r.begin(); i != r.end(); ++i) keys[i] = vdb_order::key(origins, voxels[i]);
     });
     tbb::parallel_sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
