@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 
 namespace isodel::octree {
 
@@ -81,15 +80,6 @@ void for_each_stored_tile(const TreeT& tree, const openvdb::CoordBBox& region, c
     }
     for (auto it = root.cbeginChildOn(); it; ++it)
         if (it->getNodeBoundingBox().hasOverlap(region)) detail::for_each_stored_tile_below(*it, background, region, fn);
-}
-
-/// Every stored tile of \p tree, wherever it lies.
-template <typename TreeT, typename Fn>
-void for_each_stored_tile(const TreeT& tree, const Fn& fn)
-{
-    const auto everywhere = openvdb::CoordBBox(openvdb::Coord(std::numeric_limits<int>::min()),
-                                               openvdb::Coord(std::numeric_limits<int>::max()));
-    for_each_stored_tile(tree, everywhere, fn);
 }
 
 } // namespace isodel::octree

@@ -7,6 +7,7 @@
 #include "octree/voxel_set.h"
 #include "octree/protective_layer.h"
 #include "octree/sample_field.h"
+#include "octree/value_scan.h"
 
 #include <catch2/catch.hpp>
 
@@ -163,7 +164,7 @@ TEST_CASE("stored tiles are the tiles a value iterator finds, less inactive back
             const auto b = it.getBoundingBox();
             expect.emplace_back(b.min(), b.max(), *it, it.isValueOn());
         }
-    isodel::octree::for_each_stored_tile(tree, [&](const openvdb::CoordBBox& b, float v, bool on) {
+    isodel::octree::for_each_stored_tile(tree, isodel::octree::every_sample(), [&](const openvdb::CoordBBox& b, float v, bool on) {
         found.emplace_back(b.min(), b.max(), v, on);
     });
     std::sort(expect.begin(), expect.end());
@@ -186,7 +187,7 @@ TEST_CASE("stored tiles meeting a region are the whole tree's tiles that meet it
     tree.setValueOn(Coord(0, 0, 0), 0.f);
     using Tile = std::tuple<Coord, Coord, float, bool>;
     std::vector<Tile> all;
-    isodel::octree::for_each_stored_tile(tree, [&](const openvdb::CoordBBox& b, float v, bool on) {
+    isodel::octree::for_each_stored_tile(tree, isodel::octree::every_sample(), [&](const openvdb::CoordBBox& b, float v, bool on) {
         all.emplace_back(b.min(), b.max(), v, on);
     });
     REQUIRE(all.size() == 6);
