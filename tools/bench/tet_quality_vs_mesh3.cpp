@@ -4,9 +4,11 @@
 // does, octree/segment_walk.h's phi_at), with facet_distance = eps; Mesh_3's other criteria are
 // the usual ones (facet angle 25 deg, radius-edge 3, sizes 2 voxels). Prints one row per volume:
 // tets, min/max dihedral angle (one routine for both meshes; isodel's also before its
-// improvement step), tets with an angle under 10 degrees, seconds.
+// improvement step), tets with an angle under 10 degrees, tets outside [12, 165] degrees (and,
+// of isodel's, those with no face on M), seconds.
 //
-//   tet_quality_vs_mesh3 FILE ISO [FILE ISO ...]      (eps = 0.5 voxel; inside from the grid class)
+//   tet_quality_vs_mesh3 [--facet-angle DEG] [--tet-dihedral MIN MAX] [--snap] [--compare-uniform]
+//                        FILE ISO [FILE ISO ...]      (eps = 0.5 voxel; inside from the grid class)
 #include <isodel/mesh.h>
 #include <isodel/volume.h>
 
@@ -27,6 +29,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <string>
 
 namespace {
@@ -65,6 +68,9 @@ struct DihedralRange {
 };
 DihedralRange g_range;
 
+/// --snap: MeshOptions::snap (isodel mesh --snap), off by default.
+bool g_snap = false;
+
 double seconds_since(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -85,6 +91,7 @@ UniformRun run_uniform(const isodel::Volume& vol, double iso, double facet_angle
     mo.eps_voxels = 0.5;
     mo.tets = isodel::TetRegion::Inside;
     mo.tet_spacing = isodel::TetSpacing::Uniform;
+    mo.snap = g_snap;
     mo.facet_angle_deg = facet_angle;
     mo.tet_min_dihedral_deg = g_range.min_deg;
     mo.tet_max_dihedral_deg = g_range.max_deg;
@@ -109,6 +116,7 @@ void run(const std::string& file, double iso, double facet_angle, bool compare_u
     mo.inside = vol.default_inside;
     mo.eps_voxels = 0.5;
     mo.tets = isodel::TetRegion::Inside;
+    mo.snap = g_snap;
     mo.facet_angle_deg = facet_angle;
     mo.tet_min_dihedral_deg = g_range.min_deg;
     mo.tet_max_dihedral_deg = g_range.max_deg;
@@ -117,11 +125,28 @@ void run(const std::string& file, double iso, double facet_angle, bool compare_u
     double lo_i = 180, hi_i = 0;
     std::size_t bad_i = 0, bad_m = 0; // tets with a dihedral angle under 10 degrees
     std::size_t out_i = 0, out_m = 0; // ... outside the target range [12, 165] degrees
+    std::size_t free_i = 0;           // ... of isodel's out, those with no face on M
+    std::set<std::array<std::int32_t, 3>> m_faces;
+    for (auto f : r.tets.triangles) {
+        std::sort(f.begin(), f.end());
+        m_faces.insert(f);
+    }
+    const auto faces_on_m = [&](const std::array<std::int32_t, 4>& t) {
+        int n = 0;
+        for (int j = 0; j < 4; ++j) {
+            std::array<std::int32_t, 3> f{t[(j + 1) & 3], t[(j + 2) & 3], t[(j + 3) & 3]};
+            std::sort(f.begin(), f.end());
+            n += m_faces.count(f) != 0;
+        }
+        return n;
+    };
     for (const auto& t : r.tets.tets) {
         const auto [lo, hi] = dihedral_range({r.tets.vertices[t[0]], r.tets.vertices[t[1]], r.tets.vertices[t[2]],
                                               r.tets.vertices[t[3]]});
         bad_i += lo < 10;
-        out_i += lo < 12 || hi > 165;
+        const bool out = lo < 12 || hi > 165;
+        out_i += out;
+        free_i += out && faces_on_m(t) == 0;
         lo_i = std::min(lo_i, lo);
         hi_i = std::max(hi_i, hi);
     }
@@ -158,9 +183,9 @@ void run(const std::string& file, double iso, double facet_angle, bool compare_u
         lo_m = std::min(lo_m, lo);
         hi_m = std::max(hi_m, hi);
     }
-    std::printf("%-34s %9zu %9.4f %9.4f %9.4f %7zu %7zu %4d %7.1f | %9zu %9.4f %9.4f %7zu %7zu %7.1f",
+    std::printf("%-34s %9zu %9.4f %9.4f %9.4f %7zu %7zu %7zu %4d %7.1f | %9zu %9.4f %9.4f %7zu %7zu %7.1f",
                 file.substr(file.rfind('/') + 1).c_str(), r.tets.tets.size(), r.stats.tets.min_dihedral_deg_delaunay,
-                lo_i, hi_i, bad_i, out_i, r.stats.tet_sliver_runs, t_isodel,
+                lo_i, hi_i, bad_i, out_i, free_i, r.stats.tet_sliver_runs, t_isodel,
                 std::size_t(c3t3.number_of_cells_in_complex()), lo_m, hi_m, bad_m, out_m, t_mesh3);
     if (compare_uniform) {
         const UniformRun u = run_uniform(vol, iso, facet_angle);
@@ -179,6 +204,7 @@ int main(int argc, char** argv)
     // --facet-angle), as Mesh_3's facet_angle = 25 does for its own surface.
     // --tet-dihedral MIN MAX: isodel frees the tets M pins down outside that range (isodel mesh
     // --tet-min-dihedral, --tet-max-dihedral).
+    // --snap: isodel snaps E points around a sample to it (isodel mesh --snap).
     // --compare-uniform: also isodel with every sample as G' (--uniform-tets), in the same run.
     double facet_angle = 0;
     bool compare_uniform = false;
@@ -191,6 +217,9 @@ int main(int argc, char** argv)
         } else if (a == "--tet-dihedral" && first + 2 < argc) {
             g_range = {std::stod(argv[first + 1]), std::stod(argv[first + 2])};
             first += 3;
+        } else if (a == "--snap") {
+            g_snap = true;
+            ++first;
         } else if (a == "--compare-uniform") {
             compare_uniform = true;
             ++first;
@@ -199,16 +228,18 @@ int main(int argc, char** argv)
         }
     }
     if (argc - first < 2 || (argc - first) % 2 != 0) {
-        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] [--tet-dihedral MIN MAX] [--compare-uniform] FILE ISO [FILE ISO ...]\n");
+        std::fprintf(stderr, "usage: tet_quality_vs_mesh3 [--facet-angle DEG] [--tet-dihedral MIN MAX] [--snap] [--compare-uniform] FILE ISO [FILE ISO ...]\n");
         return 2;
     }
     // isodel: min_Del is the Delaunay tets' smallest angle, min_dih/max_dih after improvement
-    // (src/volume/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees.
+    // (src/volume/tet_improvement.h); <10deg counts tets with a dihedral angle under 10 degrees;
+    // free counts the tets of out with no face on M: M does not hold them, the improvement left them.
     std::printf("isodel facet angle: %s\n", facet_angle > 0 ? std::to_string(facet_angle).c_str() : "none");
+    std::printf("isodel snap: %s\n", g_snap ? "on" : "off");
     std::printf("isodel tet dihedral range: %g .. %g (off at 0 .. 180); out: tets outside [12, 165] degrees\n",
                 g_range.min_deg, g_range.max_deg);
-    std::printf("%-34s %9s %9s %9s %9s %7s %7s %4s %7s | %9s %9s %9s %7s %7s %7s", "volume (eps 0.5 voxel, inside)",
-                "isodel", "min_Del", "min_dih", "max_dih", "<10deg", "out", "runs", "s", "Mesh_3", "min_dih", "max_dih",
+    std::printf("%-34s %9s %9s %9s %9s %7s %7s %7s %4s %7s | %9s %9s %9s %7s %7s %7s", "volume (eps 0.5 voxel, inside)",
+                "isodel", "min_Del", "min_dih", "max_dih", "<10deg", "out", "free", "runs", "s", "Mesh_3", "min_dih", "max_dih",
                 "<10deg", "out", "s");
     if (compare_uniform) std::printf(" | %9s %7s %7s", "uniform", "<10deg", "s");
     std::printf("\n");
