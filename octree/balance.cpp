@@ -138,4 +138,19 @@ std::size_t balance(AdaptiveGrid& g, int k)
     return splits;
 }
 
+std::vector<CellId> merge_candidates(const AdaptiveGrid& g, int l)
+{
+    std::vector<CellId> out;
+    if (l == 1) {
+        // Only cells touching allocated samples can differ from their neighbours; constant
+        // regions (tiles, background) stay level 0, which costs no storage.
+        for (const Coord& u : value_cells_sparse(g)) out.push_back({align_down(u, 1), 1});
+    } else {
+        for (const CellId& c : g.leaves(l - 1)) out.push_back({align_down(c.origin, l), l});
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
 } // namespace isodel::octree

@@ -35,6 +35,11 @@ inline bool touches_finer_than(const AdaptiveGrid::Reader& r, const CellId& c, i
 /// certified_coarsening.h); what the values must satisfy is theirs.
 bool may_merge(const AdaptiveGrid::Reader& r, const CellId& p, int k);
 
+/// The parents of level \p l whose children may all be leaves, sorted: at level 1 the parents of
+/// the unit cells touching allocated samples (value_cells_sparse: constant regions stay level 0,
+/// which costs no storage), above it the parents of the leaves of level l - 1.
+std::vector<CellId> merge_candidates(const AdaptiveGrid& g, int l);
+
 /// Merges the candidates whose flag is set (in order); returns how many.
 std::size_t merge_flagged(AdaptiveGrid& g, const std::vector<CellId>& candidates, const std::vector<char>& flags);
 

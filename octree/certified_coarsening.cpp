@@ -2,6 +2,7 @@
 
 #include "octree/balance.h"
 #include "octree/interpolant.h"
+#include "octree/monotone_edges.h"
 #include "octree/resample.h"
 
 #include <isodel/errors.h>
@@ -21,25 +22,6 @@ namespace {
 // A quotient delta / g rounded in double; the margin keeps the comparison on the safe side of
 // the rounding of two float differences and one division.
 constexpr double kRoundingMargin = 1.0 + 1e-9;
-
-// The strict sign shared by every difference along one axis, tracked with the smallest
-// magnitude; broken by the first zero or sign change.
-struct Monotone {
-    int sign = 0;
-    bool ok = true;
-    double min_abs = std::numeric_limits<double>::infinity();
-    void add(double diff)
-    {
-        if (!ok) return;
-        const int s = diff > 0 ? 1 : diff < 0 ? -1 : 0;
-        if (s == 0 || (sign != 0 && s != sign)) {
-            ok = false;
-            return;
-        }
-        sign = s;
-        min_abs = std::min(min_abs, std::abs(diff));
-    }
-};
 
 // The distance a certified axis allows: delta / g voxels, at most one voxel (the certificate's
 // path must stay inside the block) and within the budget in world units.
@@ -128,21 +110,6 @@ bool parent_certified(const SampleField::Reader& f, const SampleField::Reader& c
     return false;
 }
 
-std::vector<CellId> level_candidates(const AdaptiveGrid& g, int l)
-{
-    std::vector<CellId> out;
-    if (l == 1) {
-        // Only cells touching allocated samples can differ from their neighbours; constant
-        // regions (tiles, background) stay level 0, which costs no storage.
-        for (const Coord& u : value_cells_sparse(g)) out.push_back({align_down(u, 1), 1});
-    } else {
-        for (const CellId& c : g.leaves(l - 1)) out.push_back({align_down(c.origin, l), l});
-    }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-}
-
 void check_coarsening_interrupt(Interrupter* intr, int percent)
 {
     if (intr && intr->wasInterrupted(percent)) throw Cancelled("adaptive grid: interrupted");
@@ -155,7 +122,7 @@ void coarsen_bottom_up(AdaptiveGrid& g, const SampleField& fine, const SampleFie
 {
     for (int l = 1; l <= budget.max_level; ++l) {
         check_coarsening_interrupt(intr, 40 * l / std::max(1, budget.max_level));
-        const auto cand = level_candidates(g, l);
+        const auto cand = merge_candidates(g, l);
         std::vector<char> ok(cand.size(), 0);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.size(), 64),
                           [&](const tbb::blocked_range<std::size_t>& rg) {

@@ -91,6 +91,9 @@ public:
     const CoordBBox& domain() const { return domain_; }
     /// The active bounding box (the ring around it is domain() less this box).
     const CoordBBox& lattice() const { return lattice_; }
+    /// True when the ring (domain() less lattice()) reads the grid, false when it reads
+    /// outside_phi() (see "Domain" above).
+    bool ring_reads_background() const { return ring_reads_background_; }
     double isovalue() const { return isovalue_; }
     double effective_isovalue() const { return effective_; }
     /// Meshes {F = v_star} instead of the tie rule's own level: the adaptive path reads its

@@ -55,6 +55,17 @@ enum class TetSpacing { Graded, Uniform };
 /// The smallest MeshOptions::block_voxels: the collar of cubic voxels.
 constexpr int kMinBlockVoxels = 4;
 
+/// The function MeshOptions::adaptive meshes.
+enum class AdaptiveField {
+    /// The certified octree's coarse interpolant, within adaptive_share x eps of the input's
+    /// level set and isotopic to it; the mesher gets the rest of eps.
+    Coarse,
+    /// The input's own interpolant with the whole eps: the octree supplies only the point sets
+    /// E and G, coarse where each component of Sigma still crosses a leaf edge (f strictly
+    /// monotone along two axes around the leaf). adaptive_share is not used.
+    Input
+};
+
 struct MeshOptions {
     double isovalue = 0.0;               ///< v, in value units
     std::optional<Inside> inside;        ///< default: Below for level-set grids, Above otherwise
@@ -145,6 +156,8 @@ struct MeshOptions {
     /// own grid with the whole eps instead, exactly as without adaptive (AdaptiveStats says
     /// which). In [0, 1); 0 meshes on the octree whenever it has a coarse leaf.
     double adaptive_min_saving = 0.1;
+    /// Which function an adaptive run meshes (docs/adaptive.md).
+    AdaptiveField adaptive_field = AdaptiveField::Coarse;
 };
 
 struct AdaptiveVolume; // include/isodel/adaptive.h

@@ -23,7 +23,7 @@ namespace {
 using openvdb::Coord;
 using openvdb::Vec3d;
 
-/// Boxes are split down to 1/16 of a voxel; a vertex gets at most kMaxBoxes of them. Both bound
+/// Boxes are split down to 1/16 of a voxel; a vertex gets at most kMaxBoxes evaluated. Both bound
 /// the work on a Voronoi cell that stays unsettled (the Euler characteristic fallback decides).
 constexpr int kMaxDepth = 4;
 constexpr std::size_t kMaxBoxes = 1 << 14;
@@ -73,28 +73,20 @@ public:
         best_d2_ = 0;
         best_.reset();
         normals_.clear();
-        const octree::FaceSlabs& slabs = field_.face_slabs();
         octree::for_each_cell_part(lo, hi, [&](const Coord& c, const Vec3d& a, const Vec3d& b) {
             if (!(a[0] < b[0] && a[1] < b[1] && a[2] < b[2])) return;
-            // A part of the bounding box beyond one of Vor(p)'s planes: box() would count each
-            // of its boxes and settle it at once (F' of one sign, the direction's sign, or
-            // outside Vor(p)), so only the count is kept and F' is never read there.
-            if (cell_.misses_box_surely(c.asVec3d() + a, c.asVec3d() + b)) {
-                octree::for_each_piece(slabs, a, b, [&](int, int, int, const Vec3d& pa, const Vec3d& pb) {
-                    if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2] && ++boxes_ > kMaxBoxes) settled_ = false;
-                });
-                return;
-            }
+            // A part of the bounding box beyond one of Vor(p)'s planes settles at once: F' is
+            // never read there. The budget counts only boxes that are evaluated, so that a
+            // Voronoi cell many voxels wide (coarse leaves) is not refused for its size alone.
+            if (cell_.misses_box_surely(c.asVec3d() + a, c.asVec3d() + b)) return;
             // F' is trilinear on each of the cell's slab/core boxes (face_slabs.h).
             double corner[8];
             const octree::CellFunction cf = octree::cell_function(reader_, c, corner);
             // Where F' keeps one sign on the whole part (box_sign.h's margin), every box of it
-            // settles on its corner signs: it is only counted, not re-expanded and evaluated.
-            const bool one_sign = octree::sign_on_cell_box(cf, corner, a, b) != 0;
+            // settles on its corner signs: it is not expanded and evaluated.
+            if (octree::sign_on_cell_box(cf, corner, a, b) != 0) return;
             octree::for_each_piece(cf.slabs(), a, b, [&](int ix, int iy, int iz, const Vec3d& pa, const Vec3d& pb) {
-                if (!(pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2])) return;
-                if (!one_sign) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
-                else if (++boxes_ > kMaxBoxes) settled_ = false;
+                if (pa[0] < pb[0] && pa[1] < pb[1] && pa[2] < pb[2]) box(cf.piece(ix, iy, iz), c, pa, pb, 0);
             });
         });
     }

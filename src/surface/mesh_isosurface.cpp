@@ -11,6 +11,7 @@
 #include "octree/edge_crossings.h"
 #include "octree/adaptive_vdb_format.h"
 #include "octree/certified_coarsening.h"
+#include "octree/seed_octree.h"
 #include "octree/extended_level_set.h"
 #include "octree/resample.h"
 #include "octree/sample_field.h"
@@ -160,7 +161,8 @@ MeshResult finish_adaptive(MeshResult r, AdaptiveStats a, std::shared_ptr<Adapti
 // Where the octree keeps Sigma's cells fine, the share it took buys nothing and the mesher,
 // held to less than eps, adds points: below adaptive_min_saving fewer E points (bounded before
 // building, counted after), the input's own grid is meshed with the whole eps, exactly as
-// without adaptive.
+// without adaptive. With AdaptiveField::Input the mesher reads the input with the whole eps and
+// the seed octree (octree/seed_octree.h) gives only E and G, under the same saving rule.
 MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOptions& options, Interrupter* interrupter)
 {
     const auto t0 = Clock::now();
@@ -185,10 +187,28 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
         });
     a.e_uniform = a.e_octree = e.points.size();
     const double least_saved = options.adaptive_min_saving * double(a.e_uniform);
-    if (options.adaptive_min_saving > 0)
+    if (options.adaptive_min_saving > 0 && options.adaptive_field == AdaptiveField::Coarse)
         a.e_removable = octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget);
     const bool build = options.adaptive_min_saving == 0 || double(a.e_removable) >= least_saved;
-    if (build) {
+    if (options.adaptive_field == AdaptiveField::Input) {
+        // The mesher reads the input itself with the whole eps; the octree gives E and G only.
+        a.eps_coarsening_world = 0;
+        octree::SeedOctreeOptions so;
+        so.k = budget.k;
+        so.max_level = budget.max_level;
+        const octree::AdaptiveGrid g = octree::seed_octree(fine, so, interrupter);
+        if (g.max_level() > 0) a.e_octree = octree_edge_crossings(fine, g);
+        a.meshed_on_octree = g.max_level() > 0 && (options.adaptive_min_saving == 0 ||
+                                                   double(a.e_uniform) - double(a.e_octree) >= least_saved);
+        if (a.meshed_on_octree) {
+            const double t_grid = seconds_since(t0);
+            mo.eps = eps;
+            a.eps_meshing_world = eps;
+            a.leaves_per_level = g.level_histogram();
+            return finish_adaptive(mesh_once(fine, &g, mo, interrupter, nullptr), a,
+                                   input_grid_volume(grid, fine, budget.k), eps, t_grid, grid, inside, options);
+        }
+    } else if (build) {
         // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
         // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
         const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));

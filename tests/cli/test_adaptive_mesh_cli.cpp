@@ -84,6 +84,35 @@ TEST_CASE("mesh --adaptive: certified against the input, stats report the eps sp
     CHECK(v.status == 0);
 }
 
+TEST_CASE("mesh --adaptive --adaptive-field input: the whole eps to the mesher, verified against the input",
+          "[cli][adaptive]")
+{
+    TempDir tmp;
+    const std::string torus = std::string(ISODEL_TEST_DATA) + "/torus.vdb";
+    const std::string out = tmp / "m.ply", stats = tmp / "m.json";
+    const RunResult r = run_isodel("mesh " + shell_quote(torus) + " --iso 0 --adaptive --adaptive-field input "
+                                       "--adaptive-min-saving 0 --quiet -o " + shell_quote(out) + " --stats " + shell_quote(stats),
+                                   tmp.path());
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    const Json s = read_json_file(stats);
+    const Json& a = s.at("adaptive");
+    CHECK(a.at("eps_coarsening_world").get<double>() == 0.0);
+    CHECK(a.at("eps_meshing_world").get<double>() == Approx(s.at("eps_world").get<double>()));
+    CHECK(a.at("meshed_on").get<std::string>() == "octree");
+    CHECK(a.at("E_octree").get<double>() < a.at("E_uniform").get<double>());
+    const RunResult v = run_isodel("verify " + shell_quote(torus) + " --iso 0 --eps-voxels 0.5 --mesh " + shell_quote(out),
+                                   tmp.path());
+    INFO(v.out << v.err);
+    CHECK(v.status == 0);
+    // A misspelt field is refused with one line.
+    const RunResult bad = run_isodel("mesh " + shell_quote(torus) + " --iso 0 --adaptive --adaptive-field fine -o " +
+                                         shell_quote(tmp / "bad.ply"),
+                                     tmp.path());
+    CHECK(bad.status != 0);
+    CHECK_FALSE(std::filesystem::exists(tmp / "bad.ply"));
+}
+
 TEST_CASE("mesh --adaptive: an adaptive input and --blocks are refused with one line, nothing written",
           "[cli][adaptive]")
 {

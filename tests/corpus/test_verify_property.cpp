@@ -1,6 +1,6 @@
 // Property test: small random volumes with fixed seeds, some quantized so that samples
 // equal the isovalue, each meshed by mesh_isosurface and certified by verify_surface: seeds
-// 1-1000 plain, 1-1000 with --snap and 1-500 with --adaptive (verified against the random
+// 1-1000 plain, 1-1000 with --snap, 1-500 with --adaptive and 1-500 with --adaptive-field input (verified against the random
 // volume itself, not the adaptive interpolant) (label "corpus", one of the slow tests).
 // ISODEL_PROPERTY_COUNT overrides the count,
 // ISODEL_PROPERTY_DUMP=DIR writes the failing volumes there.
@@ -25,7 +25,7 @@ using namespace isodel;
 // that lose or gain a handle at eps 0.5 voxel. sample_field.h caps it at 1e-2 and bounds it by
 // the cells' interior saddles too, so these pass, with --snap too.)
 
-enum class Mode { Plain, Snap, Adaptive };
+enum class Mode { Plain, Snap, Adaptive, AdaptiveInput };
 
 /// Meshes and verifies the random volumes with seeds 1..count.
 void run_property(Mode mode, int default_count = 1000)
@@ -44,7 +44,8 @@ void run_property(Mode mode, int default_count = 1000)
         mo.inside = Inside::Above;
         mo.eps_voxels = 0.5;
         mo.snap = mode == Mode::Snap;
-        mo.adaptive = mode == Mode::Adaptive;
+        mo.adaptive = mode == Mode::Adaptive || mode == Mode::AdaptiveInput;
+        if (mode == Mode::AdaptiveInput) mo.adaptive_field = AdaptiveField::Input;
         mo.adaptive_min_saving = 0; // on the octree whenever it has coarse leaves
         MeshResult res;
         try {
@@ -102,4 +103,12 @@ TEST_CASE("property: random small volumes meshed adaptively (--adaptive) verify 
     // The certificate, its repair rounds and meshing on the leaves, on data with no smoothness:
     // the guarantees hold against the random volume itself.
     run_property(Mode::Adaptive, 500);
+}
+
+TEST_CASE("property: random small volumes meshed adaptively with F from the input verify against themselves",
+          "[corpus][verify][property][adaptive]")
+{
+    // The seed octree's certificate (every component keeps an E point on a leaf edge) on data
+    // with no smoothness.
+    run_property(Mode::AdaptiveInput, 500);
 }

@@ -124,6 +124,8 @@ TEST_CASE("surface slivers: the bundled torus frees every tet M pinned down and 
     CHECK(st.n_tet_sliver > 0);
     CHECK(st.tet_sliver_stop == TetSliverStop::Met);
     CHECK(pinned_out_of_range(freed.mesh.tets, 12, 165) == 0);
+    // Without snapping, tets with no face on M stay out of the range (the next test's case).
+    CHECK(out_of_range(freed.mesh.tets, 12, 165) > 0);
     CHECK(freed.mesh.surface.vertices.size() > plain.surface.vertices.size()); // M did change
 
     mo.threads = 1;
@@ -145,8 +147,9 @@ TEST_CASE("surface slivers: with snapping, every tet of the bundled torus is in 
     mo.tet_max_dihedral_deg = 165;
     const testing::MeshAndVerify snapped = testing::mesh_and_verify(*vol.grid, mo);
     const MeshStats& st = snapped.mesh.stats;
-    INFO("snap, range 12..165: " << st.snapped << " snapped, " << st.tet_sliver_runs << " more runs, dihedral "
-                                 << st.tets.min_dihedral_deg << ".." << st.tets.max_dihedral_deg);
+    INFO("snap, range 12..165: " << st.snapped << " snapped, " << st.tet_sliver_runs << " more runs, "
+                                 << st.n_tet_sliver << " points, stop " << to_string(st.tet_sliver_stop)
+                                 << ", dihedral " << st.tets.min_dihedral_deg << ".." << st.tets.max_dihedral_deg);
     REQUIRE(snapped.report.passed());
     CHECK(snapped.genera == std::vector<int>{1});
     testing::require_volume_mesh(snapped.mesh, TetRegion::Inside, "torus.vdb inside, snap, range 12..165");

@@ -148,3 +148,29 @@ TEST_CASE("adaptive meshing: the same mesh at 1 and 2 threads, refused combinati
     d.tolerance = 0.01;
     CHECK_THROWS_AS(mesh_isosurface(decimate(*grid, d).volume, mo), InvalidInput);
 }
+
+TEST_CASE("adaptive meshing, seeds from the octree and F from the input: the features keep their topology",
+          "[mesher][adaptive]")
+{
+    // AdaptiveField::Input (docs/adaptive.md "Seeds from the octree"): the whole eps goes to the
+    // mesher, the octree gives E and G only, and its certificate keeps an E point on every
+    // component (the blob, the handle's ring, the neck's rod sit inside would-be coarse cells).
+    for (const Feature& f : features()) {
+        INFO(f.name);
+        const auto grid = scene(f);
+        MeshOptions mo = options(0.5);
+        mo.adaptive = true;
+        mo.adaptive_field = AdaptiveField::Input;
+        mo.adaptive_min_saving = 0;
+        const auto r = testing::mesh_and_verify(*grid, mo);
+        INFO(r.report.summary());
+        CHECK(r.report.passed());
+        CHECK(r.genera == f.genera);
+        const AdaptiveStats& a = r.mesh.stats.adaptive;
+        CHECK(a.meshed_on_octree);
+        CHECK(a.leaves_per_level.size() >= 3); // coarse cells elsewhere
+        CHECK(a.eps_coarsening_world == 0.0);
+        CHECK(a.eps_meshing_world == Approx(0.5));
+        CHECK(a.e_octree < a.e_uniform);
+    }
+}

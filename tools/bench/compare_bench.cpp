@@ -7,6 +7,7 @@
 //   isodel 2thr    the same, threads = 2
 //   isodel blocks  the same, partitioned: MeshOptions::block_voxels = --blocks (32), threads = 2
 //   isodel adaptive  MeshOptions::adaptive (certified octree, guarantees against the input), threads = 2
+//   isodel adapt-in  the same with adaptive_field = Input (the input's own F, seeds from the octree)
 //   isodel+tets    the same with MeshOptions::tets = Inside, threads = 2
 //   Mesh_3 surf    CGAL Mesh_3 on an implicit domain evaluating the same trilinear interpolant F
 //                  (as tools/bench/tet_quality_vs_mesh3.cpp): facet_distance = eps, facet_angle 30,
@@ -27,7 +28,7 @@
 // of "isodel 2thr" (of "isodel+tets" for the Mesh_3 tets row) divided by this row's median time.
 //
 //   compare_bench [--data DIR] [--filter S1,S2] [--all] [--eps-voxels 0.5,0.1] [--reps 3]
-//                 [--timeout SECONDS] [--methods i1,i2,ib,ia,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]
+//                 [--timeout SECONDS] [--methods i1,i2,ib,ia,ii,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]
 // --quick = --reps 1 --eps-voxels 0.5 on 3 volumes (molmap protein, torus, skull).
 #include <isodel/mesh.h>
 #include <isodel/volume.h>
@@ -89,9 +90,9 @@ using DT = CGAL::Delaunay_triangulation_3<K>;
 using V3 = std::array<double, 3>;
 using Tri = std::array<std::int64_t, 3>;
 
-enum Method { I1, I2, IB, IA, IT, MS, MT, VDB, DTM, DTX, NMETHODS };
-const char* kKey[NMETHODS] = {"i1", "i2", "ib", "ia", "it", "ms", "mt", "vdb", "dt", "dtx"};
-const char* kLabel[NMETHODS] = {"isodel 1thr", "isodel 2thr", "isodel blocks 2thr", "isodel adaptive 2thr", "isodel+tets 2thr", "Mesh_3 surf",
+enum Method { I1, I2, IB, IA, IAI, IT, MS, MT, VDB, DTM, DTX, NMETHODS };
+const char* kKey[NMETHODS] = {"i1", "i2", "ib", "ia", "ii", "it", "ms", "mt", "vdb", "dt", "dtx"};
+const char* kLabel[NMETHODS] = {"isodel 1thr", "isodel 2thr", "isodel blocks 2thr", "isodel adaptive 2thr", "isodel adapt-in 2thr", "isodel+tets 2thr", "Mesh_3 surf",
                                 "Mesh_3 tets", "VDB volumeToMesh", "DT(E+G+N)", "DT(E+G+N) traits"};
 int g_block_voxels = 32; ///< --blocks: block size of the "isodel blocks" row
 
@@ -215,7 +216,7 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
     isodel::ReadOptions ro;
     ro.grid_name = ds.grid_name;
     const isodel::Volume vol = isodel::read_volume(path, ro);
-    if (m == I1 || m == I2 || m == IB || m == IA || m == IT) {
+    if (m == I1 || m == I2 || m == IB || m == IA || m == IAI || m == IT) {
         isodel::MeshOptions mo;
         mo.isovalue = ds.isovalue;
         mo.inside = ds.inside;
@@ -223,7 +224,8 @@ void child_run(Method m, const std::string& path, const Dataset& ds, double eps_
         mo.threads = m == I1 ? 1 : 2;
         if (m == IT) mo.tets = isodel::TetRegion::Inside;
         if (m == IB) mo.block_voxels = g_block_voxels;
-        mo.adaptive = m == IA; // MeshOptions::adaptive, certified against the input
+        mo.adaptive = m == IA || m == IAI; // MeshOptions::adaptive, certified against the input
+        if (m == IAI) mo.adaptive_field = isodel::AdaptiveField::Input; // seeds from the octree, F from the input
         std::vector<std::array<double, 3>> points; // for the DT(E+G+N) row
         const auto t0 = std::chrono::steady_clock::now();
         isodel::MeshResult r =
@@ -460,7 +462,7 @@ int main(int argc, char** argv)
         } else if (a == "--quick") quick = true;
         else {
             std::cerr << "usage: compare_bench [--data DIR] [--filter S1,S2] [--all] [--eps-voxels 0.5,0.1] [--reps 3]\n"
-                         "                     [--timeout SECONDS] [--methods i1,i2,ib,ia,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]\n";
+                         "                     [--timeout SECONDS] [--methods i1,i2,ib,ia,ii,it,ms,mt,vdb,dt,dtx] [--blocks 32] [--quick]\n";
             return 2;
         }
     }
@@ -546,7 +548,7 @@ int main(int argc, char** argv)
                 if (!enabled[std::size_t(m)]) continue;
                 const Summary& s = t.s[m];
                 std::string notes = s.last.topo;
-                if (m == I1 || m == I2 || m == IB || m == IA || m == IT) {
+                if (m == I1 || m == I2 || m == IB || m == IA || m == IAI || m == IT) {
                     if (s.last.extra >= 0) notes += (notes.empty() ? "" : "; ") + std::string("|E+G+N| ") + std::to_string(s.last.extra);
                     if (!s.last.msg.empty()) notes += (s.have ? "; phases: " : "ERROR: ") + s.last.msg;
                 } else if (m == DTM || m == DTX) {

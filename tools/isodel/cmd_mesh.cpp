@@ -39,6 +39,7 @@ struct MeshCliOptions {
     double adaptive_share = 0.5;
     int adaptive_k = 1, adaptive_max_level = 5;
     double adaptive_min_saving = 0.1;
+    std::string adaptive_field = "coarse";
     std::string adaptive_grid;
 };
 
@@ -132,6 +133,10 @@ void add_mesh_command(CLI::App& app, int& exit_code)
                     "--adaptive: mesh the input's own grid with the whole eps when the octree removes less than "
                     "this share of its grid-edge crossings (default 0.1; 0: the octree whenever it has a coarse leaf)")
         ->check(CLI::Range(0.0, 0.999999));
+    cmd->add_option("--adaptive-field", o->adaptive_field,
+                    "--adaptive: the function meshed: coarse (the octree's interpolant, default) or input (the "
+                    "input's own with the whole eps, the octree giving only E and G; docs/adaptive.md)")
+        ->check(CLI::IsMember({"coarse", "input"}));
     cmd->add_option("--adaptive-grid", o->adaptive_grid,
                     "--adaptive: also write the grid meshed (.vdb, as isodel decimate writes: the certified "
                     "octree, or the input's own grid when the octree saved too little), so that "
@@ -174,6 +179,7 @@ void add_mesh_command(CLI::App& app, int& exit_code)
         mo.adaptive_k = o->adaptive_k;
         mo.adaptive_max_level = o->adaptive_max_level;
         mo.adaptive_min_saving = o->adaptive_min_saving;
+        mo.adaptive_field = o->adaptive_field == "input" ? AdaptiveField::Input : AdaptiveField::Coarse;
         check_mesh_options(mo); // before any work
         if (!o->adaptive_grid.empty() && !mo.adaptive)
             throw InvalidInput("--adaptive-grid " + o->adaptive_grid +
