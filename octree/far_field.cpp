@@ -23,8 +23,7 @@ int block_log2(int depth)
 
 /// Aligned cubes of edge 2^m that meet \p span, visited with \p fn(cube min); stops when fn
 /// returns false.
-template <class Fn>
-bool for_each_cube(const CoordBBox& span, int m, Fn&& fn)
+template <class Fn> bool for_each_cube(const CoordBBox& span, int m, Fn&& fn)
 {
     const Coord lo = align_down(span.min(), m), hi = align_down(span.max(), m);
     const int step = 1 << m;
@@ -79,7 +78,8 @@ SpanReading read_span(const SampleField& f, openvdb::FloatGrid::ConstAccessor& a
     }
     if (read.empty()) return scan.out;
     int m = 0;
-    while (m < int(Upper::TOTAL) && (1 << m) < std::max({read.dim().x(), read.dim().y(), read.dim().z()})) ++m;
+    while (m < int(Upper::TOTAL) && (1 << m) < std::max({read.dim().x(), read.dim().y(), read.dim().z()}))
+        ++m;
     SpanScan part{f, acc, read, scan.out};
     for_each_cube(read, m, [&](const Coord& c) {
         part.cube(c, m);
@@ -132,7 +132,8 @@ std::size_t coarsen_far_field(AdaptiveGrid& g, const SampleField& f, int max_lev
     for (int z = lo.z(); z <= hi.z(); z += step)
         for (int y = lo.y(); y <= hi.y(); y += step) {
             if (intr && intr->wasInterrupted()) throw Cancelled("far field: interrupted");
-            for (int x = lo.x(); x <= hi.x(); x += step) place(place, CellId{Coord(x, y, z), root_level});
+            for (int x = lo.x(); x <= hi.x(); x += step)
+                place(place, CellId{Coord(x, y, z), root_level});
         }
     return set;
 }

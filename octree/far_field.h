@@ -36,7 +36,6 @@ SpanReading read_span(const SampleField& f, openvdb::FloatGrid::ConstAccessor& a
 /// Marks as leaves of the uniform grid \p g (over f's samples) the coarsest far-field cells of
 /// level <= \p max_level (see the file comment). Returns the number of leaves set.
 /// \throw InvalidInput \p g has a leaf above level 0; Cancelled when \p interrupter asks to stop.
-std::size_t coarsen_far_field(AdaptiveGrid& g, const SampleField& f, int max_level,
-                              Interrupter* interrupter = nullptr);
+std::size_t coarsen_far_field(AdaptiveGrid& g, const SampleField& f, int max_level, Interrupter* interrupter = nullptr);
 
 } // namespace isodel::octree

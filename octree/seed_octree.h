@@ -51,7 +51,6 @@ bool seed_leaf_certified(const SampleField::Reader& f, const CellId& p);
 /// them when seed_leaf_certified accepts it and the grid stays k-balanced; then balance().
 /// The corner samples are \p fine's (the mesher does not read them).
 /// \throw Cancelled when \p interrupter asks to stop.
-AdaptiveGrid seed_octree(const SampleField& fine, const SeedOctreeOptions& options,
-                         Interrupter* interrupter = nullptr);
+AdaptiveGrid seed_octree(const SampleField& fine, const SeedOctreeOptions& options, Interrupter* interrupter = nullptr);
 
 } // namespace isodel::octree

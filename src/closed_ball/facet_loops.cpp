@@ -1,6 +1,7 @@
 #include "closed_ball/facet_loops.h"
 
 #include "closed_ball/facet_extrema.h"
+#include "closed_ball/monotone_in_plane.h"
 
 #include "delaunay/circumcenter.h"
 #include "delaunay/vertex_star.h"
@@ -218,6 +219,9 @@ std::optional<Candidate> check_facet(const Delaunay& dt, const EdgeJob& job, con
     // evaluation. (Most facets of a first scan lie away from Sigma's sign changes and end here.)
     const bool inside = octree::phi_at(reader, P[0]) >= 0;
     if (octree::one_sign_on_box(reader, frame->lo, frame->hi, inside)) return std::nullopt;
+    // A direction in the facet's plane along which F' never decreases rules a loop out
+    // (monotone_in_plane.h): most facets dual to Delaunay edges along Sigma end here.
+    if (monotone_direction_in_plane(reader, frame->lo, frame->hi, frame->N)) return std::nullopt;
     const BoundarySigns boundary(reader, P, inside, max_cells);
     const Polygon polygon(P, frame->N);
     const std::optional<Vec3d> witness = deepest_island_point(field, reader, polygon, *frame, boundary);

@@ -1,9 +1,8 @@
-// Certified adaptive meshing (MeshOptions::adaptive, with the coarse interpolant and with F from the input) on every volume of ../shared/data outside
-// cells/, one file per volume (the .mrc copies hold the same samples as the .vdb), at eps 0.5 and
-// 0.25 voxel: isodel verify passes each mesh against the ORIGINAL volume (topology against an
-// independent computation of Sigma's, Hausdorff, Delaunay), the manifest's topology holds, the
-// certified distance stays within the coarsening's share of eps, and the voxel bound holds in
-// leaves. Label "corpus".
+// Certified adaptive meshing (MeshOptions::adaptive, with the coarse interpolant and with F from the input) on every
+// volume of ../shared/data outside cells/, one file per volume (the .mrc copies hold the same samples as the .vdb), at
+// eps 0.5 and 0.25 voxel: isodel verify passes each mesh against the ORIGINAL volume (topology against an independent
+// computation of Sigma's, Hausdorff, Delaunay), the manifest's topology holds, the certified distance stays within the
+// coarsening's share of eps, and the voxel bound holds in leaves. Label "corpus".
 #include <catch2/catch.hpp>
 
 #include "support/skip.h"
@@ -32,33 +31,34 @@ TEST_CASE("adaptive meshing of the shared volumes verifies against the original 
         if (testing::json_string(e, "format") == "vdb") ro.grid_name = testing::json_string(e, "grid_name");
         const auto grid = read_volume(testing::shared_data() + "/" + file, ro).grid;
         for (double eps : {0.5, 0.25})
-          for (AdaptiveField field : {AdaptiveField::Coarse, AdaptiveField::Input}) {
-            MeshOptions mo;
-            mo.isovalue = testing::json_number(e, "isovalue");
-            mo.inside = testing::inside_of(e);
-            mo.eps_voxels = eps;
-            mo.adaptive = true;
-            mo.adaptive_min_saving = 0; // always on the octree: the certificate is what is tested
-            mo.adaptive_field = field;
-            const char* fname = field == AdaptiveField::Input ? " (F from the input)" : " (coarse F)";
-            testing::MeshAndVerify r;
-            try {
-                r = testing::mesh_and_verify(*grid, mo);
-            } catch (const std::exception& ex) {
-                FAIL_CHECK(file << " eps " << eps << fname << ": " << ex.what());
-                continue;
+            for (AdaptiveField field : {AdaptiveField::Coarse, AdaptiveField::Input}) {
+                MeshOptions mo;
+                mo.isovalue = testing::json_number(e, "isovalue");
+                mo.inside = testing::inside_of(e);
+                mo.eps_voxels = eps;
+                mo.adaptive = true;
+                mo.adaptive_min_saving = 0; // always on the octree: the certificate is what is tested
+                mo.adaptive_field = field;
+                const char* fname = field == AdaptiveField::Input ? " (F from the input)" : " (coarse F)";
+                testing::MeshAndVerify r;
+                try {
+                    r = testing::mesh_and_verify(*grid, mo);
+                }
+                catch (const std::exception& ex) {
+                    FAIL_CHECK(file << " eps " << eps << fname << ": " << ex.what());
+                    continue;
+                }
+                ++meshed;
+                INFO(file << " eps " << eps << fname << "\n" << r.report.summary());
+                CHECK(r.report.passed());
+                if (testing::json_has(e, "expected_topology") && testing::json_has(e.at("expected_topology"), "genus"))
+                    CHECK(r.genera == testing::expected_genera(e));
+                const AdaptiveStats& a = r.mesh.stats.adaptive;
+                CHECK(a.meshed_on_octree == (a.leaves_per_level.size() > 1));
+                CHECK(a.distance_world <= a.eps_coarsening_world);
+                CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
+                CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);
             }
-            ++meshed;
-            INFO(file << " eps " << eps << fname << "\n" << r.report.summary());
-            CHECK(r.report.passed());
-            if (testing::json_has(e, "expected_topology") && testing::json_has(e.at("expected_topology"), "genus"))
-                CHECK(r.genera == testing::expected_genera(e));
-            const AdaptiveStats& a = r.mesh.stats.adaptive;
-            CHECK(a.meshed_on_octree == (a.leaves_per_level.size() > 1));
-            CHECK(a.distance_world <= a.eps_coarsening_world);
-            CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
-            CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);
-        }
     }
     CHECK(meshed >= 2 * 2 * 16);
 }

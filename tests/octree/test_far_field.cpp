@@ -1,8 +1,8 @@
 // Far-field leaves (octree/far_field.h): where a sparse grid stores nothing, a cell is a leaf as
 // coarse as max_level when its span touches no allocated leaf node and reads one strict sign;
 // with them the seed octree of a narrow-band level set coarsens at Sigma past the band's width.
-#include "octree/far_field.h"
 #include "octree/balance.h"
+#include "octree/far_field.h"
 #include "octree/seed_octree.h"
 
 #include <catch2/catch.hpp>
@@ -21,7 +21,8 @@ using isodel::octree::SampleField;
 openvdb::FloatGrid::Ptr band_sphere(float radius)
 {
     openvdb::initialize();
-    return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(radius, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 1.0f, 3.0f);
+    return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(radius, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 1.0f,
+                                                                    3.0f);
 }
 
 } // namespace
@@ -29,12 +30,12 @@ openvdb::FloatGrid::Ptr band_sphere(float radius)
 TEST_CASE("far field: a span reads stored samples, one sign or both", "[octree][far_field]")
 {
     auto grid = openvdb::FloatGrid::create(1.0f);
-    grid->tree().addTile(1, Coord(0, 0, 0), -2.0f, false);   // an 8^3 tile inside
-    grid->tree().addTile(1, Coord(16, 0, 0), -2.0f, false);  // another one
-    grid->tree().setValueOn(Coord(40, 0, 0), 0.5f);          // an allocated leaf node at 40..47
-    grid->tree().setValueOn(Coord(-30, -30, -30), 1.0f);     // spreads the active box
+    grid->tree().addTile(1, Coord(0, 0, 0), -2.0f, false);  // an 8^3 tile inside
+    grid->tree().addTile(1, Coord(16, 0, 0), -2.0f, false); // another one
+    grid->tree().setValueOn(Coord(40, 0, 0), 0.5f);         // an allocated leaf node at 40..47
+    grid->tree().setValueOn(Coord(-30, -30, -30), 1.0f);    // spreads the active box
     grid->tree().setValueOn(Coord(60, 30, 30), 1.0f);
-    const SampleField f(grid, 0.0, Inside::Below);           // phi > 0 below 0: the tiles
+    const SampleField f(grid, 0.0, Inside::Below); // phi > 0 below 0: the tiles
     auto acc = grid->getConstAccessor();
     const auto read = [&](Coord lo, Coord hi) { return isodel::octree::read_span(f, acc, CoordBBox(lo, hi)); };
 

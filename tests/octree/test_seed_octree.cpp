@@ -2,9 +2,9 @@
 // strictly monotone along two axes on the band cells of its span and rim, so every crossed region
 // keeps a crossing on a leaf edge; the grid stays k-balanced and its coarse leaves keep their
 // certificate after balancing.
-#include "octree/seed_octree.h"
 #include "octree/balance.h"
 #include "octree/edge_crossings.h"
+#include "octree/seed_octree.h"
 #include "seeding/adaptive_points.h"
 
 #include <catch2/catch.hpp>
@@ -31,7 +31,8 @@ openvdb::FloatGrid::Ptr dense_grid(int n, const std::function<double(double, dou
     auto acc = g->getAccessor();
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) acc.setValueOn(Coord(i, j, k), float(f(i, j, k)));
+            for (int i = 0; i < n; ++i)
+                acc.setValueOn(Coord(i, j, k), float(f(i, j, k)));
     return g;
 }
 
@@ -53,7 +54,8 @@ TEST_CASE("seed octree: a leaf is certified by two monotone axes on its span and
     // A trough: monotone along z only (x turns at x = 8, y is flat): refused.
     CHECK_FALSE(certified([](double x, double, double z) { return (z - 8.3) + 0.05 * (x - 8.0) * (x - 8.0); }));
     // The same trough tilted along y: z and y are monotone: accepted.
-    CHECK(certified([](double x, double y, double z) { return (z - 8.3) + 0.05 * (x - 8.0) * (x - 8.0) + 0.2 * (y - 8.1); }));
+    CHECK(certified(
+        [](double x, double y, double z) { return (z - 8.3) + 0.05 * (x - 8.0) * (x - 8.0) + 0.2 * (y - 8.1); }));
     // A blob inside the leaf: no monotone axis.
     CHECK_FALSE(certified([](double x, double y, double z) {
         return 2.3 - std::sqrt((x - 8.2) * (x - 8.2) + (y - 7.9) * (y - 7.9) + (z - 8.1) * (z - 8.1));
@@ -61,7 +63,9 @@ TEST_CASE("seed octree: a leaf is certified by two monotone axes on its span and
     // Monotone along x on the span but not in the rim (x turns at 3.6, in the rim cell 3..4);
     // y turns inside: only z is left, refused. With the turn outside the rim (2.6): x and z pass.
     const auto bowl = [](double x0) {
-        return [x0](double x, double y, double z) { return (z - 8.3) + 0.05 * (x - x0) * (x - x0) + 0.05 * (y - 8.0) * (y - 8.0); };
+        return [x0](double x, double y, double z) {
+            return (z - 8.3) + 0.05 * (x - x0) * (x - x0) + 0.05 * (y - 8.0) * (y - 8.0);
+        };
     };
     CHECK_FALSE(certified(bowl(3.6)));
     CHECK(certified(bowl(2.6)));
@@ -79,7 +83,8 @@ std::vector<std::vector<Coord>> crossed_groups(const SampleField& field, int n)
         for (int j = 0; j + 1 < n; ++j)
             for (int i = 0; i + 1 < n; ++i) {
                 bool pos = false, neg = false;
-                for (int m = 0; m < 8; ++m) (r.phi(Coord(i + (m & 1), j + ((m >> 1) & 1), k + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
+                for (int m = 0; m < 8; ++m)
+                    (r.phi(Coord(i + (m & 1), j + ((m >> 1) & 1), k + ((m >> 2) & 1))) > 0 ? pos : neg) = true;
                 if (pos && neg) crossed[Coord(i, j, k)] = -1;
             }
     std::vector<std::vector<Coord>> groups;
@@ -122,10 +127,12 @@ TEST_CASE("seed octree: every crossed region keeps a crossing on a leaf edge; ba
             double r;
         };
         std::vector<Ball> balls{{{20.3, 19.8, 20.1}, 12.0}};
-        for (int b = 0; b < 5; ++b) balls.push_back({{pos(rng), pos(rng), pos(rng)}, rad(rng)});
+        for (int b = 0; b < 5; ++b)
+            balls.push_back({{pos(rng), pos(rng), pos(rng)}, rad(rng)});
         const auto grid = dense_grid(41, [&](double x, double y, double z) {
             double v = -1e9;
-            for (const Ball& b : balls) v = std::max(v, b.r - (openvdb::Vec3d(x, y, z) - b.c).length());
+            for (const Ball& b : balls)
+                v = std::max(v, b.r - (openvdb::Vec3d(x, y, z) - b.c).length());
             return v;
         });
         const SampleField field(grid, 0.0, Inside::Above);
@@ -146,14 +153,17 @@ TEST_CASE("seed octree: every crossed region keeps a crossing on a leaf edge; ba
         const auto e = isodel::octree::edge_crossings(field);
         for (const auto& p : e.points)
             if (isodel::mesher::on_leaf_edge(leaves, p.lower, p.axis))
-                for (const Coord& u : isodel::octree::cells_around_edge(p.lower, p.axis)) e_cells.insert(u);
+                for (const Coord& u : isodel::octree::cells_around_edge(p.lower, p.axis))
+                    e_cells.insert(u);
         for (const auto& group : crossed_groups(field, 41)) {
             ++groups_seen;
-            const bool seeded = std::any_of(group.begin(), group.end(), [&](const Coord& u) { return e_cells.count(u) > 0; });
+            const bool seeded =
+                std::any_of(group.begin(), group.end(), [&](const Coord& u) { return e_cells.count(u) > 0; });
             CHECK(seeded);
-            for (const Coord& u : group) coarse_at_sigma += leaves.leaf(u) && leaves.leaf(u)->level >= 2;
+            for (const Coord& u : group)
+                coarse_at_sigma += leaves.leaf(u) && leaves.leaf(u)->level >= 2;
         }
     }
-    CHECK(groups_seen > 12);      // the blobs are separate components in most trials
+    CHECK(groups_seen > 12);       // the blobs are separate components in most trials
     CHECK(coarse_at_sigma > 1000); // and the sphere did coarsen at Sigma
 }

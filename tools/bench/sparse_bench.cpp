@@ -4,7 +4,7 @@
 // volumeToMesh on the same grid in the same run. Each measurement runs in its own forked child
 // (its peak memory is its own), the methods interleaved within each repetition.
 //
-//   sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big] [--huge] [--adaptive]
+//   sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big] [--huge] [--adaptive] [--adaptive-field-input]
 // Scenes: two spheres of radius 20 voxels 50 voxels apart on every axis ("near pair") and 1500
 // apart ("far pair"); with --big, about 2.4 10^6 active voxels as many spheres and tori
 // scattered through a 3000^3 box ("scattered") and the same shapes packed into a compact box
@@ -13,6 +13,7 @@
 // box over 4000 voxels per axis), meshed with MeshOptions::adaptive only (a uniform run of it
 // needs more memory than a 24 GiB machine has). --adaptive meshes every scene with
 // MeshOptions::adaptive; the "grid" column is the certified octree's construction.
+// --adaptive-field-input: adaptive runs mesh the input's own F (AdaptiveField::Input).
 #include <isodel/mesh.h>
 
 #include <openvdb/openvdb.h>
@@ -153,7 +154,7 @@ int main(int argc, char** argv)
     openvdb::initialize();
     int reps = 3, threads = 2;
     double eps_voxels = 0.5;
-    bool big = false, huge = false, adaptive = false;
+    bool big = false, huge = false, adaptive = false, field_input = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--reps" && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
@@ -162,8 +163,9 @@ int main(int argc, char** argv)
         else if (a == "--big") big = true;
         else if (a == "--huge") huge = true;
         else if (a == "--adaptive") adaptive = true;
+        else if (a == "--adaptive-field-input") field_input = true;
         else {
-            std::fprintf(stderr, "usage: sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big] [--huge] [--adaptive]\n");
+            std::fprintf(stderr, "usage: sparse_bench [--reps 3] [--eps-voxels 0.5] [--threads 2] [--big] [--huge] [--adaptive] [--adaptive-field-input]\n");
             return 2;
         }
     }
@@ -197,6 +199,7 @@ int main(int argc, char** argv)
                 mo.eps_voxels = eps_voxels;
                 mo.threads = threads;
                 mo.adaptive = adaptive || scene.adaptive_only;
+                if (field_input) mo.adaptive_field = isodel::AdaptiveField::Input;
                 const auto t0 = std::chrono::steady_clock::now();
                 const isodel::MeshResult m = isodel::mesh_isosurface(*grid, mo);
                 s.total = seconds_since(t0);
