@@ -71,7 +71,11 @@ SpanReading read_span(const SampleField& f, openvdb::FloatGrid::ConstAccessor& a
 {
     SpanScan scan{f, acc, span, {}};
     CoordBBox read = span;
-    if (!f.ring_reads_background() && !f.lattice().isInside(span)) {
+    if (!f.domain().isInside(span)) { // as SampleField::Reader::phi reads it
+        (f.outside_phi() > 0 ? scan.out.positive : scan.out.negative) = true;
+        read.intersect(f.domain());
+    }
+    if (!f.ring_reads_background() && !f.lattice().isInside(read)) {
         // The ring reads "outside" (sample_field.h), whatever the grid holds there.
         (f.outside_phi() > 0 ? scan.out.positive : scan.out.negative) = true;
         read.intersect(f.lattice());

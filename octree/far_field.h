@@ -24,7 +24,8 @@
 namespace isodel::octree {
 
 /// What the closed box of sample nodes \p span reads of \p f: stored samples (an allocated leaf
-/// node), or phi of one or both strict signs.
+/// node), or phi of one or both strict signs. Nodes beyond f's domain, and in the ring when it
+/// does not read the background, read "outside", as SampleField::Reader::phi reads them.
 struct SpanReading {
     bool stored = false;
     bool positive = false;

@@ -15,20 +15,23 @@ namespace isodel::octree {
 bool seed_leaf_certified(const SampleField::Reader& f, const CellId& p)
 {
     const int s = p.size();
+    // Off Sigma: f keeps the corners' strict sign on every unit cell. Read without storing, and
+    // stop at the first sign change: most candidates of a smooth volume are decided here.
+    bool pos = false, neg = false;
+    for (int k = 0; k <= s && !(pos && neg); ++k)
+        for (int j = 0; j <= s && !(pos && neg); ++j)
+            for (int i = 0; i <= s && !(pos && neg); ++i) (f.phi(p.origin.offsetBy(i, j, k)) > 0 ? pos : neg) = true;
+    if (!(pos && neg)) return true;
+    // A leaf that Sigma crosses is read whole, span and rim, so its edge bounds the memory.
+    if (s > kMaxBandLeafVoxels) return false;
+
     // Nodes -1 .. s + 1 per axis: the span and its one-cell rim.
     const int n = s + 3;
     std::vector<double> phi(std::size_t(n) * n * n);
     auto idx = [n](int i, int j, int k) { return (std::size_t(k + 1) * n + (j + 1)) * n + (i + 1); };
-    bool pos = false, neg = false;
     for (int k = -1; k <= s + 1; ++k)
         for (int j = -1; j <= s + 1; ++j)
-            for (int i = -1; i <= s + 1; ++i) {
-                const double v = f.phi(p.origin.offsetBy(i, j, k));
-                phi[idx(i, j, k)] = v;
-                const bool in_span = i >= 0 && j >= 0 && k >= 0 && i <= s && j <= s && k <= s;
-                if (in_span) (v > 0 ? pos : neg) = true;
-            }
-    if (!(pos && neg)) return true; // off Sigma: f keeps the corners' strict sign on every unit cell
+            for (int i = -1; i <= s + 1; ++i) phi[idx(i, j, k)] = f.phi(p.origin.offsetBy(i, j, k));
 
     // Band cells of the span and the rim (cells -1 .. s per axis): the only ones Sigma meets.
     const int cells = s + 2;

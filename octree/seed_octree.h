@@ -9,7 +9,8 @@
 /// h^2 / (4R), which stops the leaves at Sigma at 4 voxels at eps = 0.5 voxel. Here the level set
 /// is never moved, so no eps is spent, and a leaf needs only what the mesher needs of its seeds:
 /// every component of Sigma must cross a leaf edge (so that E has a point on it), as it does on
-/// a grid of trilinear cells.
+/// a grid of trilinear cells (the paper's E, Section 4.1, taken from the leaves of an octree as
+/// Section 4.2 allows).
 ///
 /// The certificate of a leaf L (seed_leaf_certified) holds when its span is off Sigma (every
 /// sample node of the closed span of one strict sign; f is a convex combination of its corners
@@ -44,7 +45,12 @@ struct SeedOctreeOptions {
     int max_level = 5; ///< coarsest leaf: 2^max_level voxels
 };
 
-/// The certificate of parent cell \p p (see the file comment) on \p f.
+/// The largest leaf edge, in voxels, that Sigma may cross: its span and rim are read into memory
+/// ((edge + 3)^3 values). Leaves off Sigma may be coarser (up to SeedOctreeOptions::max_level).
+constexpr int kMaxBandLeafVoxels = 64;
+
+/// The certificate of parent cell \p p (see the file comment) on \p f; false for a parent that
+/// Sigma crosses with an edge over kMaxBandLeafVoxels.
 bool seed_leaf_certified(const SampleField::Reader& f, const CellId& p);
 
 /// Builds the grid bottom-up: level by level, a parent whose eight children are leaves replaces

@@ -1,9 +1,11 @@
 #include "closed_ball/cell_surface_euler.h"
 
+#include "octree/box_sign.h"
 #include "octree/cell_function.h"
 
 #include "octree/cell_interpolant.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -110,28 +112,52 @@ int sampled_euler_characteristic(const octree::SampleField::Reader& reader, cons
     }
     const auto at = [&](int x, int y, int z) { return (std::size_t(z) * n[1] + y) * n[0] + x; };
     std::vector<double> F(std::size_t(n[0]) * n[1] * n[2]);
+    // Only the voxels T can meet in V are sampled: a voxel beyond one of V's planes (surely, so
+    // every sub-cube of it is missed however it is rounded) or on which F' keeps one sign (every
+    // sub-cube of it has corners of one sign) adds nothing to chi, and its sub-cubes are skipped
+    // below. The sum is the same; the work follows Sigma in V, not V's box.
+    const Coord v0(floor_div(i0[0], r), floor_div(i0[1], r), floor_div(i0[2], r));
+    const Coord v1(floor_div(i0[0] + n[0] - 1, r), floor_div(i0[1] + n[1] - 1, r), floor_div(i0[2] + n[2] - 1, r));
+    const Coord vn = v1 - v0 + Coord(1);
+    const auto voxel = [&](int x, int y, int z) { return (std::size_t(z) * vn.y() + y) * vn.x() + x; };
+    std::vector<char> meets(std::size_t(vn.x()) * vn.y() * vn.z(), 0);
     {
-        const Coord v0(floor_div(i0[0], r), floor_div(i0[1], r), floor_div(i0[2], r));
-        const Coord v1(floor_div(i0[0] + n[0] - 1, r), floor_div(i0[1] + n[1] - 1, r), floor_div(i0[2] + n[2] - 1, r));
-        const Coord vn = v1 - v0 + Coord(1);
-        std::vector<octree::CellFunction> tri(std::size_t(vn.x()) * vn.y() * vn.z());
+        std::vector<octree::CellFunction> tri(meets.size());
         for (int z = 0; z < vn.z(); ++z)
             for (int y = 0; y < vn.y(); ++y)
                 for (int x = 0; x < vn.x(); ++x) {
-                    tri[(std::size_t(z) * vn.y() + y) * vn.x() + x] = octree::cell_function(reader, v0 + Coord(x, y, z));
+                    const Coord c = v0 + Coord(x, y, z);
+                    double corner[8];
+                    tri[voxel(x, y, z)] = octree::cell_function(reader, c, corner);
+                    meets[voxel(x, y, z)] =
+                        !cell.misses_box_surely(c.asVec3d(), c.asVec3d() + Vec3d(1)) &&
+                        octree::sign_on_cell_box(tri[voxel(x, y, z)], corner, Vec3d(0), Vec3d(1)) == 0;
                 }
-        for (int z = 0; z < n[2]; ++z)
-            for (int y = 0; y < n[1]; ++y)
-                for (int x = 0; x < n[0]; ++x) {
-                    const int g[3] = {i0[0] + x, i0[1] + y, i0[2] + z};
-                    int v[3];
-                    double l[3];
+        // F at the sub-lattice points of every voxel that meets (its closed box), each read from
+        // the voxel floor(point) as before, so a point shared by two voxels has one value.
+        for (int vz = 0; vz < vn.z(); ++vz)
+            for (int vy = 0; vy < vn.y(); ++vy)
+                for (int vx = 0; vx < vn.x(); ++vx) {
+                    if (!meets[voxel(vx, vy, vz)]) continue;
+                    const int vv[3] = {v0.x() + vx, v0.y() + vy, v0.z() + vz};
+                    int a[3], b[3]; // the voxel's sub-lattice points, clipped to the array
                     for (int k = 0; k < 3; ++k) {
-                        v[k] = floor_div(g[k], r);
-                        l[k] = double(g[k] - v[k] * r) / r;
+                        a[k] = std::max(vv[k] * r - i0[k], 0);
+                        b[k] = std::min(vv[k] * r + r - i0[k], n[k] - 1);
                     }
-                    const auto& t = tri[(std::size_t(v[2] - v0.z()) * vn.y() + (v[1] - v0.y())) * vn.x() + (v[0] - v0.x())];
-                    F[at(x, y, z)] = t(l[0], l[1], l[2]);
+                    for (int z = a[2]; z <= b[2]; ++z)
+                        for (int y = a[1]; y <= b[1]; ++y)
+                            for (int x = a[0]; x <= b[0]; ++x) {
+                                const int g[3] = {i0[0] + x, i0[1] + y, i0[2] + z};
+                                int v[3];
+                                double l[3];
+                                for (int k = 0; k < 3; ++k) {
+                                    v[k] = floor_div(g[k], r);
+                                    l[k] = double(g[k] - v[k] * r) / r;
+                                }
+                                const auto& t = tri[voxel(v[0] - v0.x(), v[1] - v0.y(), v[2] - v0.z())];
+                                F[at(x, y, z)] = t(l[0], l[1], l[2]);
+                            }
                 }
     }
     const auto inside = [&](std::size_t i) { return F[i] >= 0; }; // phi >= 0 is inside
@@ -156,6 +182,9 @@ int sampled_euler_characteristic(const octree::SampleField::Reader& reader, cons
     for (int z = 0; z + 1 < n[2]; ++z)
         for (int y = 0; y + 1 < n[1]; ++y)
             for (int x = 0; x + 1 < n[0]; ++x) {
+                if (!meets[voxel(floor_div(i0[0] + x, r) - v0.x(), floor_div(i0[1] + y, r) - v0.y(),
+                                 floor_div(i0[2] + z, r) - v0.z())])
+                    continue; // adds nothing (above); its corners may be unsampled
                 const bool in0 = inside(at(x, y, z));
                 bool mixed = false; // T meets only sub-cubes whose corners change sign
                 for (int c = 1; c < 8 && !mixed; ++c) mixed = inside(index_of(x, y, z, c)) != in0;

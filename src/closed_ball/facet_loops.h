@@ -21,7 +21,11 @@
 //
 // In a facet that an arc of Sigma also crosses, a grid-edge point counts as a witness when no
 // straight path in the facet leads from it to a Voronoi vertex of its own sign without crossing
-// Sigma.
+// Sigma (a strongly curved arc can pass this test without a loop).
+//
+// Facets skipped. A facet whose box F' keeps one sign on (box_sign.h), and a facet whose plane
+// holds a direction along which F' never decreases on its box (monotone_in_plane.h), hold no
+// loop and are not scanned: on such a facet a curved arc no longer adds its witness.
 #include "closed_ball/closed_ball.h"
 #include "octree/sample_field.h"
 

@@ -1,6 +1,6 @@
 #pragma once
 // Internal: a certificate that a Voronoi facet holds no closed loop of Sigma' (CBP_VF's second
-// clause, facet_loops.h) without scanning the facet.
+// clause, paper Section 4.1; facet_loops.h) without scanning the facet.
 //
 // Claim. Let P be a plane of normal N and R a box. If some direction u != 0 with N . u = 0
 // has u . grad F' >= 0 on every cell meeting R, then Sigma' n P n R holds no closed curve

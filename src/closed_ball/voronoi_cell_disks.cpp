@@ -24,7 +24,9 @@ using openvdb::Coord;
 using openvdb::Vec3d;
 
 /// Boxes are split down to 1/16 of a voxel; a vertex gets at most kMaxBoxes evaluated. Both bound
-/// the work on a Voronoi cell that stays unsettled (the Euler characteristic fallback decides).
+/// the work of evaluating a Voronoi cell that stays unsettled (the Euler characteristic fallback
+/// decides); the parts that settle without evaluation (beyond a plane, or of one sign) cost one
+/// test per cell of the cell's bounding box.
 constexpr int kMaxDepth = 4;
 constexpr std::size_t kMaxBoxes = 1 << 14;
 /// A failed direction is replaced by the axis of the normals seen so far, up to kDirections

@@ -109,7 +109,10 @@ TEST_CASE("mesh --adaptive --adaptive-field input: the whole eps to the mesher, 
     const RunResult bad = run_isodel("mesh " + shell_quote(torus) + " --iso 0 --adaptive --adaptive-field fine -o " +
                                          shell_quote(tmp / "bad.ply"),
                                      tmp.path());
+    INFO(bad.err);
     CHECK(bad.status != 0);
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+    CHECK(bad.err.find("--adaptive-field") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(tmp / "bad.ply"));
 }
 

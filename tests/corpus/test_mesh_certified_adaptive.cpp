@@ -56,6 +56,12 @@ TEST_CASE("adaptive meshing of the shared volumes verifies against the original 
                 const AdaptiveStats& a = r.mesh.stats.adaptive;
                 CHECK(a.meshed_on_octree == (a.leaves_per_level.size() > 1));
                 CHECK(a.distance_world <= a.eps_coarsening_world);
+                if (field == AdaptiveField::Input) { // the level set is never moved: the whole eps meshes
+                    CHECK(a.eps_coarsening_world == 0);
+                    CHECK(a.distance_world == 0);
+                    CHECK(a.eps_meshing_world == Approx(r.mesh.stats.eps_world));
+                    CHECK(a.e_octree <= a.e_uniform);
+                }
                 CHECK(r.mesh.stats.max_cells_e <= r.mesh.stats.bound_e);
                 CHECK(r.mesh.stats.max_cells_n <= r.mesh.stats.bound_n);
             }
