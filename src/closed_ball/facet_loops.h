@@ -21,7 +21,7 @@
 //
 // In a facet that an arc of Sigma also crosses, a grid-edge point counts as a witness when no
 // straight path in the facet leads from it to a Voronoi vertex of its own sign without crossing
-// Sigma (a strongly curved arc can pass this test without a loop).
+// Sigma (a strongly curved arc can make a point such a witness without a loop).
 //
 // Facets skipped. A facet whose box F' keeps one sign on (box_sign.h), and a facet whose plane
 // holds a direction along which F' never decreases on its box (monotone_in_plane.h), hold no
