@@ -187,9 +187,13 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
         });
     a.e_uniform = a.e_octree = e.points.size();
     const double least_saved = options.adaptive_min_saving * double(a.e_uniform);
-    if (options.adaptive_min_saving > 0 && options.adaptive_field == AdaptiveField::Coarse)
+    // The certified octree is built only when a bound before building says it could remove
+    // enough crossings (the seed octree of the Input field is counted after building instead).
+    const auto coarse_may_pay = [&] {
+        if (options.adaptive_min_saving == 0) return true;
         a.e_removable = octree::crossings_coarse_leaves_could_remove(fine, e.points, e.crossed_cells, budget);
-    const bool build = options.adaptive_min_saving == 0 || double(a.e_removable) >= least_saved;
+        return double(a.e_removable) >= least_saved;
+    };
     if (options.adaptive_field == AdaptiveField::Input) {
         // The mesher reads the input itself with the whole eps; the octree gives E and G only.
         a.eps_coarsening_world = 0;
@@ -208,7 +212,7 @@ MeshResult mesh_certified_adaptive(const openvdb::FloatGrid& grid, const MeshOpt
             return finish_adaptive(mesh_once(fine, &g, mo, interrupter, nullptr), a,
                                    input_grid_volume(grid, fine, budget.k), eps, t_grid, grid, inside, options);
         }
-    } else if (build) {
+    } else if (coarse_may_pay()) {
         // A narrow-band level set's clamped values would bound the cells at Sigma by the band's
         // half-width: coarse corners read distances extended beyond it (extended_level_set.h).
         const auto corners = octree::extend_level_set(grid, 1 << std::min(budget.max_level, 3));
